@@ -1,0 +1,451 @@
+#include "nmesh/mesh.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "nmesh/error.h"
+#include "nmesh/mesh_check.h"
+
+namespace nmesh {
+
+// ---- construction -------------------------------------------------------------------------------
+
+Mesh Mesh::tetrahedron(const Vec3& center, float radius) {
+    // Vertices of a regular tetrahedron: alternate corners of the cube [-1, 1]^3, scaled so they
+    // lie on the sphere of the given radius.
+    const float s = radius / std::sqrt(3.0f);
+    return tetrahedron(center + Vec3{s, s, s}, center + Vec3{s, -s, -s}, center + Vec3{-s, s, -s},
+                       center + Vec3{-s, -s, s});
+}
+
+Mesh Mesh::tetrahedron(const Vec3& a, const Vec3& b_in, const Vec3& c_in, const Vec3& d) {
+    Vec3 b = b_in, c = c_in;
+    // With det(b-a, c-a, d-a) > 0 the faces (a,c,b), (a,b,d), (a,d,c), (b,c,d) face outward;
+    // otherwise swapping b and c makes it so.
+    if (dot(cross(b - a, c - a), d - a) < 0.0f) std::swap(b, c);
+
+    Mesh m;
+    m.reserve(4);
+    const Vertex v[4] = {m.new_vertex(a), m.new_vertex(b), m.new_vertex(c), m.new_vertex(d)};
+    const std::uint32_t tri[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    // The six edges and, for each, which half-edge runs i -> j (the first of the pair runs from
+    // the lower to the higher vertex number).
+    Edge e[4][4];
+    for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) e[i][j] = e[j][i] = m.new_edge();
+    auto he = [&](std::uint32_t i, std::uint32_t j) { return halfedge(e[i][j], i < j ? 0 : 1); };
+    for (const auto& t : tri) {
+        const Face f = m.new_face();
+        m.he_to_[he(t[0], t[1]).idx] = v[t[1]].idx;
+        m.he_to_[he(t[1], t[2]).idx] = v[t[2]].idx;
+        m.he_to_[he(t[2], t[0]).idx] = v[t[0]].idx;
+        m.link_face(f, he(t[0], t[1]), he(t[1], t[2]), he(t[2], t[0]));
+    }
+    for (std::uint32_t i = 0; i < 4; ++i) m.vhe_[v[i].idx] = he(i, (i + 1) % 4).idx;
+    return m;
+}
+
+Mesh Mesh::from_indexed(const IndexedMesh& in) {
+    const std::uint32_t nv = std::uint32_t(in.positions.size());
+    Mesh m;
+    m.reserve(nv);
+    for (const Vec3& p : in.positions) m.new_vertex(p);
+    // Directed edge (a, b) -> half-edge, found by binary search in a sorted table.
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> directed;
+    directed.reserve(in.triangles.size() * 3);
+    auto key = [](std::uint32_t a, std::uint32_t b) { return (std::uint64_t(a) << 32) | b; };
+    for (std::size_t t = 0; t < in.triangles.size(); ++t) {
+        const auto& tri = in.triangles[t];
+        for (int i = 0; i < 3; ++i) {
+            const std::uint32_t a = tri[i], b = tri[(i + 1) % 3];
+            if (a >= nv || b >= nv || a == b)
+                throw InputError("mesh: triangle " + std::to_string(t) + " has an invalid or repeated vertex index");
+            directed.push_back({key(a, b), std::uint32_t(t * 3 + i)});
+        }
+    }
+    std::sort(directed.begin(), directed.end());
+    for (std::size_t i = 1; i < directed.size(); ++i)
+        if (directed[i].first == directed[i - 1].first)
+            throw InputError("mesh: the directed edge " + std::to_string(directed[i].first >> 32) + " -> " +
+                             std::to_string(directed[i].first & 0xffffffffu) +
+                             " appears twice (non-manifold or inconsistently oriented)");
+    auto find = [&](std::uint32_t a, std::uint32_t b) -> std::uint32_t {
+        const auto it = std::lower_bound(directed.begin(), directed.end(), std::make_pair(key(a, b), 0u));
+        return (it != directed.end() && it->first == key(a, b)) ? it->second : kInvalidIndex;
+    };
+    // Corner slot (t * 3 + i) -> half-edge; each undirected edge gets one pair.
+    std::vector<std::uint32_t> he_of(directed.size(), kInvalidIndex);
+    for (std::size_t t = 0; t < in.triangles.size(); ++t) {
+        for (int i = 0; i < 3; ++i) {
+            const std::uint32_t c = std::uint32_t(t * 3 + i);
+            if (he_of[c] != kInvalidIndex) continue;
+            const std::uint32_t a = in.triangles[t][i], b = in.triangles[t][(i + 1) % 3];
+            const std::uint32_t opposite = find(b, a);
+            if (opposite == kInvalidIndex)
+                throw InputError("mesh: the edge " + std::to_string(a) + " - " + std::to_string(b) +
+                                 " has only one triangle (the mesh is not closed)");
+            const Edge e = m.new_edge();
+            he_of[c] = halfedge(e, 0).idx;
+            he_of[opposite] = halfedge(e, 1).idx;
+            m.he_to_[halfedge(e, 0).idx] = b;
+            m.he_to_[halfedge(e, 1).idx] = a;
+        }
+    }
+    for (std::size_t t = 0; t < in.triangles.size(); ++t) {
+        const Face f = m.new_face();
+        m.link_face(f, Halfedge(he_of[t * 3]), Halfedge(he_of[t * 3 + 1]), Halfedge(he_of[t * 3 + 2]));
+        for (int i = 0; i < 3; ++i) m.vhe_[in.triangles[t][i]] = he_of[t * 3 + i];
+    }
+    for (std::uint32_t v = 0; v < nv; ++v)
+        if (m.vhe_[v] == kInvalidIndex) throw InputError("mesh: vertex " + std::to_string(v) + " is in no triangle");
+    const ManifoldCheck check = check_manifold(m);
+    if (!check.ok) throw InputError("mesh: not a closed genus-0 2-manifold: " + check.error);
+    return m;
+}
+
+void Mesh::reserve(std::uint32_t n) {
+    vpos_.reserve(n);
+    vhe_.reserve(n);
+    vremoved_.reserve(n);
+    const std::size_t ne = std::size_t(n) * 3, nh = ne * 2, nf = std::size_t(n) * 2;
+    he_to_.reserve(nh);
+    he_next_.reserve(nh);
+    he_face_.reserve(nh);
+    eremoved_.reserve(ne);
+    fhe_.reserve(nf);
+    fremoved_.reserve(nf);
+}
+
+// ---- slots and free lists -----------------------------------------------------------------------
+
+Vertex Mesh::new_vertex(const Vec3& p) {
+    ++n_vertices_;
+    if (vfree_ != kInvalidIndex) {
+        const std::uint32_t v = vfree_;
+        vfree_ = vhe_[v];
+        vremoved_[v] = 0;
+        vpos_[v] = p;
+        vhe_[v] = kInvalidIndex;
+        return Vertex(v);
+    }
+    vpos_.push_back(p);
+    vhe_.push_back(kInvalidIndex);
+    vremoved_.push_back(0);
+    return Vertex(std::uint32_t(vpos_.size() - 1));
+}
+
+Face Mesh::new_face() {
+    ++n_faces_;
+    if (ffree_ != kInvalidIndex) {
+        const std::uint32_t f = ffree_;
+        ffree_ = fhe_[f];
+        fremoved_[f] = 0;
+        fhe_[f] = kInvalidIndex;
+        return Face(f);
+    }
+    fhe_.push_back(kInvalidIndex);
+    fremoved_.push_back(0);
+    return Face(std::uint32_t(fhe_.size() - 1));
+}
+
+Edge Mesh::new_edge() {
+    ++n_edges_;
+    if (efree_ != kInvalidIndex) {
+        const std::uint32_t e = efree_;
+        efree_ = he_next_[2 * e];
+        eremoved_[e] = 0;
+        return Edge(e);
+    }
+    for (int i = 0; i < 2; ++i) {
+        he_to_.push_back(kInvalidIndex);
+        he_next_.push_back(kInvalidIndex);
+        he_face_.push_back(kInvalidIndex);
+    }
+    eremoved_.push_back(0);
+    return Edge(std::uint32_t(eremoved_.size() - 1));
+}
+
+void Mesh::delete_vertex(Vertex v) {
+    --n_vertices_;
+    vremoved_[v.idx] = 1;
+    vhe_[v.idx] = vfree_;
+    vfree_ = v.idx;
+}
+
+void Mesh::delete_face(Face f) {
+    --n_faces_;
+    fremoved_[f.idx] = 1;
+    fhe_[f.idx] = ffree_;
+    ffree_ = f.idx;
+}
+
+void Mesh::delete_edge(Edge e) {
+    --n_edges_;
+    eremoved_[e.idx] = 1;
+    he_next_[2 * e.idx] = efree_;
+    efree_ = e.idx;
+}
+
+void Mesh::link_face(Face f, Halfedge h0, Halfedge h1, Halfedge h2) {
+    he_next_[h0.idx] = h1.idx;
+    he_next_[h1.idx] = h2.idx;
+    he_next_[h2.idx] = h0.idx;
+    he_face_[h0.idx] = he_face_[h1.idx] = he_face_[h2.idx] = f.idx;
+    fhe_[f.idx] = h0.idx;
+}
+
+void Mesh::replace_in_face(Halfedge old, Halfedge by) {
+    const Halfedge p = prev(old), n = next(old);
+    const Face f = face(old);
+    he_next_[p.idx] = by.idx;
+    he_next_[by.idx] = n.idx;
+    he_face_[by.idx] = f.idx;
+    if (fhe_[f.idx] == old.idx) fhe_[f.idx] = by.idx;
+}
+
+// ---- queries ------------------------------------------------------------------------------------
+
+Halfedge Mesh::find_halfedge(Vertex a, Vertex b) const {
+    const Halfedge start = halfedge(a);
+    Halfedge h = start;
+    do {
+        if (to(h) == b) return h;
+        h = ccw_rotated(h);
+    } while (h != start);
+    return Halfedge();
+}
+
+std::uint32_t Mesh::valence(Vertex v) const {
+    std::uint32_t n = 0;
+    for_each_outgoing(v, [&](Halfedge) { ++n; });
+    return n;
+}
+
+Vec3 Mesh::face_normal(Face f) const {
+    const Halfedge h = halfedge(f);
+    const Vec3& p0 = position(from(h));
+    const Vec3& p1 = position(to(h));
+    const Vec3& p2 = position(to(next(h)));
+    return normalized(cross(p1 - p0, p2 - p0));
+}
+
+float Mesh::face_area(Face f) const {
+    const Halfedge h = halfedge(f);
+    const Vec3& p0 = position(from(h));
+    return 0.5f * norm(cross(position(to(h)) - p0, position(to(next(h))) - p0));
+}
+
+Vec3 Mesh::face_centroid(Face f) const {
+    const Halfedge h = halfedge(f);
+    return (position(from(h)) + position(to(h)) + position(to(next(h)))) * (1.0f / 3.0f);
+}
+
+Vec3 Mesh::vertex_normal(Vertex v) const {
+    // The cross product of a face's two edges at v is twice its area times its unit normal, so
+    // their sum is the area-weighted normal sum.
+    const Vec3& p = position(v);
+    Vec3 n;
+    for_each_outgoing(v, [&](Halfedge h) {
+        n += cross(position(to(h)) - p, position(to(next(h))) - p);
+    });
+    return normalized(n);
+}
+
+// ---- vertex split -------------------------------------------------------------------------------
+
+bool Mesh::can_split(Halfedge to_c, Halfedge to_d) const {
+    if (!to_c.valid() || !to_d.valid() || to_c == to_d) return false;
+    if (to_c.idx >= halfedge_capacity() || to_d.idx >= halfedge_capacity()) return false;
+    if (is_removed(to_c) || is_removed(to_d)) return false;
+    return from(to_c) == from(to_d);
+}
+
+Vertex Mesh::split(Halfedge to_c, Halfedge to_d, const Vec3& p) {
+    assert(can_split(to_c, to_d));
+    const Vertex b = from(to_c);
+    const Vertex c = to(to_c), d = to(to_d);
+
+    // New elements: vertex a, edges a-b (h, t), b-c (hn, on) and d-b (tp, op), faces f0, f1.
+    const Vertex a = new_vertex(p);
+    const Edge e_ab = new_edge(), e_bc = new_edge(), e_db = new_edge();
+    const Halfedge h = halfedge(e_ab, 0), t = halfedge(e_ab, 1);
+    const Halfedge hn = halfedge(e_bc, 0), on = halfedge(e_bc, 1);
+    const Halfedge tp = halfedge(e_db, 0), op = halfedge(e_db, 1);
+    const Face f0 = new_face(), f1 = new_face();
+
+    // Hand the outgoing half-edges to_c ... to_d (counter-clockwise) over to a. Rotation reads
+    // only next(), so retargeting the twins while walking is safe.
+    for (Halfedge o = to_c;; o = ccw_rotated(o)) {
+        he_to_[twin(o).idx] = a.idx;
+        if (o == to_d) break;
+    }
+
+    // The old half-edges c -> b (now c -> a) and b -> d (now a -> d) move into the new faces;
+    // fresh half-edges take their places in the faces they leave.
+    const Halfedge hp = twin(to_c), tn = to_d;
+    he_to_[on.idx] = b.idx;
+    replace_in_face(hp, on);
+    he_to_[op.idx] = d.idx;
+    replace_in_face(tn, op);
+
+    // f0 = (a, b, c), f1 = (b, a, d).
+    he_to_[h.idx] = b.idx;
+    he_to_[hn.idx] = c.idx;
+    link_face(f0, h, hn, hp);
+    he_to_[t.idx] = a.idx;
+    he_to_[tp.idx] = b.idx;
+    link_face(f1, t, tn, tp);
+
+    vhe_[a.idx] = h.idx;
+    if (from(halfedge(b)) != b) vhe_[b.idx] = t.idx;  // b's stored half-edge moved to a
+#ifdef NMESH_CHECK_INVARIANTS
+    assert_manifold(*this, "split");
+#endif
+    return a;
+}
+
+// ---- edge collapse ------------------------------------------------------------------------------
+
+bool Mesh::can_collapse(Halfedge h) const {
+    if (!h.valid() || h.idx >= halfedge_capacity() || is_removed(h)) return false;
+    if (n_vertices_ <= 4) return false;  // a tetrahedron is the smallest closed manifold
+    const Vertex a = from(h), b = to(h);
+    const Vertex c = to(next(h)), d = to(next(twin(h)));
+    const std::uint32_t va = valence(a), vb = valence(b);
+    if (va + vb < 4 + 3) return false;                        // b would end below valence 3
+    if (valence(c) <= 3 || valence(d) <= 3) return false;     // c and d each lose one neighbour
+    // Link condition: the neighbours a and b share are exactly c and d.
+    std::uint32_t shared = 0;
+    bool ok = true;
+    for_each_neighbor(a, [&](Vertex x) {
+        if (x == b) return;
+        for_each_neighbor(b, [&](Vertex y) {
+            if (x == y) {
+                ++shared;
+                if (x != c && x != d) ok = false;
+            }
+        });
+    });
+    return ok && shared == 2;
+}
+
+void Mesh::collapse(Halfedge h) {
+    assert(can_collapse(h));
+    // Faces f0 = (a, b, c) and f1 = (b, a, d) around h = a -> b disappear, with edges a-b, b-c
+    // and d-b; the edges c-a and a-d survive as c-b and b-d.
+    const Halfedge hn = next(h), hp = next(hn);
+    const Halfedge t = twin(h), tn = next(t), tp = next(tn);
+    const Vertex a = from(h), b = to(h), c = to(hn), d = to(tn);
+    const Face f0 = face(h), f1 = face(t);
+    const Halfedge on = twin(hn), op = twin(tp);
+
+    // Everything that pointed to a now points to b.
+    for_each_outgoing(a, [&](Halfedge o) { he_to_[twin(o).idx] = b.idx; });
+
+    replace_in_face(on, hp);  // hp = c -> b takes the place of the dying c -> b
+    replace_in_face(op, tn);  // tn = b -> d takes the place of the dying b -> d
+
+    vhe_[b.idx] = twin(hp).idx;
+    if (vhe_[c.idx] == on.idx) vhe_[c.idx] = hp.idx;
+    if (vhe_[d.idx] == tp.idx) vhe_[d.idx] = twin(tn).idx;
+
+    delete_face(f0);
+    delete_face(f1);
+    delete_edge(edge(h));
+    delete_edge(edge(hn));
+    delete_edge(edge(tp));
+    delete_vertex(a);
+#ifdef NMESH_CHECK_INVARIANTS
+    assert_manifold(*this, "collapse");
+#endif
+}
+
+// ---- edge flip ----------------------------------------------------------------------------------
+
+bool Mesh::can_flip(Halfedge h) const {
+    if (!h.valid() || h.idx >= halfedge_capacity() || is_removed(h)) return false;
+    const Vertex a = from(h), b = to(h);
+    const Vertex c = to(next(h)), d = to(next(twin(h)));
+    if (c == d) return false;
+    if (valence(a) <= 3 || valence(b) <= 3) return false;  // a and b each lose one neighbour
+    return !find_halfedge(c, d).valid();                   // c-d must not exist already
+}
+
+FlipRecord Mesh::flip(Halfedge h) {
+    assert(can_flip(h));
+    // Before: f0 = [h: a->b, hn: b->c, hp: c->a], f1 = [t: b->a, tn: a->d, tp: d->b].
+    // After:  f0 = [h: d->c, hp, tn],              f1 = [t: c->d, tp, hn].
+    const Halfedge hn = next(h), hp = next(hn);
+    const Halfedge t = twin(h), tn = next(t), tp = next(tn);
+    const Vertex a = from(h), b = to(h);
+    const Face f0 = face(h), f1 = face(t);
+    FlipRecord r{h, halfedge(a), halfedge(b), {halfedge(f0), halfedge(f1)}};
+
+    he_to_[h.idx] = he_to_[hn.idx];  // c
+    he_to_[t.idx] = he_to_[tn.idx];  // d
+    link_face(f0, h, hp, tn);
+    link_face(f1, t, tp, hn);
+    if (vhe_[a.idx] == h.idx) vhe_[a.idx] = tn.idx;
+    if (vhe_[b.idx] == t.idx) vhe_[b.idx] = hn.idx;
+#ifdef NMESH_CHECK_INVARIANTS
+    assert_manifold(*this, "flip");
+#endif
+    return r;
+}
+
+void Mesh::unflip(const FlipRecord& r) {
+    // The mirror image of flip(): with the current f0 = [h, x, y] and f1 = [t, u, w], the old
+    // faces were [h, w, x] and [t, y, u].
+    const Halfedge h = r.h, t = twin(h);
+    const Halfedge x = next(h), y = next(x);
+    const Halfedge u = next(t), w = next(u);
+    const Face f0 = face(h), f1 = face(t);
+    he_to_[h.idx] = he_to_[u.idx];  // b
+    he_to_[t.idx] = he_to_[x.idx];  // a
+    link_face(f0, h, w, x);
+    link_face(f1, t, y, u);
+    vhe_[from(h).idx] = r.old_out_from.idx;
+    vhe_[to(h).idx] = r.old_out_to.idx;
+    fhe_[f0.idx] = r.old_face_he[0].idx;
+    fhe_[f1.idx] = r.old_face_he[1].idx;
+#ifdef NMESH_CHECK_INVARIANTS
+    assert_manifold(*this, "unflip");
+#endif
+}
+
+// ---- export -------------------------------------------------------------------------------------
+
+IndexedMesh Mesh::to_indexed(std::vector<std::uint32_t>* vertex_map) const {
+    IndexedMesh out;
+    std::vector<std::uint32_t> local;
+    std::vector<std::uint32_t>& map = vertex_map ? *vertex_map : local;
+    map.assign(vertex_capacity(), kInvalidIndex);
+    out.positions.reserve(n_vertices_);
+    for (std::uint32_t v = 0; v < vertex_capacity(); ++v) {
+        if (vremoved_[v]) continue;
+        map[v] = std::uint32_t(out.positions.size());
+        out.positions.push_back(vpos_[v]);
+    }
+    out.triangles.reserve(n_faces_);
+    for (std::uint32_t f = 0; f < face_capacity(); ++f) {
+        if (fremoved_[f]) continue;
+        const Halfedge h = halfedge(Face(f));
+        out.triangles.push_back({map[from(h).idx], map[to(h).idx], map[to(next(h)).idx]});
+    }
+    return out;
+}
+
+bool Mesh::same_arrays(const Mesh& o) const {
+    return vhe_ == o.vhe_ && vremoved_ == o.vremoved_ && he_to_ == o.he_to_ &&
+           he_next_ == o.he_next_ && he_face_ == o.he_face_ && eremoved_ == o.eremoved_ &&
+           fhe_ == o.fhe_ && fremoved_ == o.fremoved_ && vfree_ == o.vfree_ &&
+           ffree_ == o.ffree_ && efree_ == o.efree_ && n_vertices_ == o.n_vertices_ &&
+           n_faces_ == o.n_faces_ && n_edges_ == o.n_edges_ && vpos_.size() == o.vpos_.size() &&
+           std::equal(vpos_.begin(), vpos_.end(), o.vpos_.begin(),
+                      [](const Vec3& p, const Vec3& q) { return p == q; });
+}
+
+}  // namespace nmesh

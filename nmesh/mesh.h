@@ -1,0 +1,215 @@
+// nmesh/mesh.h — an index-based half-edge mesh for closed triangle 2-manifolds.
+//
+// Storage (arrays only, no node-based containers):
+//   - half-edges come in pairs: edge e owns half-edges 2e and 2e+1, so twin(h) = h ^ 1;
+//   - per half-edge: the vertex it points to, the next half-edge in its face, its face;
+//   - per vertex: position and one outgoing half-edge; per face: one half-edge;
+//   - a dead slot's own connectivity field (vertex -> outgoing half-edge, face -> half-edge,
+//     edge -> next of its first half-edge) holds the next free slot: a free list at no memory cost.
+//     Creation pops the free list in O(1); a `removed` flag tells dead from alive for asserts and
+//     iteration.
+//
+// The mesh core knows topology only. Each topology operation has a named predicate
+// (can_split, can_collapse, can_flip) and asserts it; the learning algorithm adds its own rules on
+// top. Every operation takes a closed 2-manifold to a closed 2-manifold of the same genus.
+//
+// Orientation: faces are counter-clockwise seen from outside; next() walks a face CCW; the
+// outgoing half-edges of a vertex are visited CCW by ccw_rotated(h) = twin(prev(h)).
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "nmesh/indexed_mesh.h"
+#include "nmesh/vec3.h"
+
+namespace nmesh {
+
+inline constexpr std::uint32_t kInvalidIndex = std::numeric_limits<std::uint32_t>::max();
+
+// Typed 4-byte handles; default-constructed handles are invalid.
+template <class Tag>
+struct Handle {
+    std::uint32_t idx = kInvalidIndex;
+    constexpr Handle() = default;
+    constexpr explicit Handle(std::uint32_t i) : idx(i) {}
+    constexpr bool valid() const { return idx != kInvalidIndex; }
+    constexpr bool operator==(Handle o) const { return idx == o.idx; }
+    constexpr bool operator!=(Handle o) const { return idx != o.idx; }
+    constexpr bool operator<(Handle o) const { return idx < o.idx; }
+};
+using Vertex = Handle<struct VertexTag>;
+using Halfedge = Handle<struct HalfedgeTag>;
+using Face = Handle<struct FaceTag>;
+using Edge = Handle<struct EdgeTag>;
+
+// What flip() changed, so that unflip() can restore the mesh bit for bit.
+struct FlipRecord {
+    Halfedge h;               // the flipped half-edge (same slot before and after)
+    Halfedge old_out_from;    // outgoing half-edge stored at the old edge's endpoints before
+    Halfedge old_out_to;
+    Halfedge old_face_he[2];  // half-edge stored at face(h) and face(twin(h)) before
+};
+
+class Mesh {
+public:
+    Mesh() = default;
+
+    // A regular tetrahedron inscribed in the sphere (center, radius), faces oriented outward.
+    static Mesh tetrahedron(const Vec3& center = {}, float radius = 1.0f);
+    // A tetrahedron on four given points; the orientation is fixed so faces point outward
+    // (the points must not be coplanar).
+    static Mesh tetrahedron(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+    // Builds the half-edge form of a dense mesh. Throws InputError unless the triangles form a
+    // closed, consistently oriented, connected genus-0 2-manifold using every vertex.
+    // O(F log F).
+    static Mesh from_indexed(const IndexedMesh& in);
+
+    // ---- sizes ------------------------------------------------------------------------------
+    std::uint32_t n_vertices() const { return n_vertices_; }  // alive
+    std::uint32_t n_faces() const { return n_faces_; }
+    std::uint32_t n_edges() const { return n_edges_; }
+    // Slot counts (alive + free): every handle index is below these; per-element arrays kept by
+    // an algorithm are sized by them.
+    std::uint32_t vertex_capacity() const { return std::uint32_t(vpos_.size()); }
+    std::uint32_t face_capacity() const { return std::uint32_t(fhe_.size()); }
+    std::uint32_t edge_capacity() const { return std::uint32_t(he_to_.size() / 2); }
+    std::uint32_t halfedge_capacity() const { return std::uint32_t(he_to_.size()); }
+    // Reserve room for n vertices (and the ~2n faces and ~3n edges that come with them).
+    void reserve(std::uint32_t n);
+
+    bool is_removed(Vertex v) const { return vremoved_[v.idx] != 0; }
+    bool is_removed(Face f) const { return fremoved_[f.idx] != 0; }
+    bool is_removed(Edge e) const { return eremoved_[e.idx] != 0; }
+    bool is_removed(Halfedge h) const { return eremoved_[h.idx >> 1] != 0; }
+
+    // ---- connectivity -----------------------------------------------------------------------
+    Vertex to(Halfedge h) const { return Vertex(he_to_[h.idx]); }
+    Vertex from(Halfedge h) const { return to(twin(h)); }
+    Halfedge next(Halfedge h) const { return Halfedge(he_next_[h.idx]); }
+    Halfedge prev(Halfedge h) const { return next(next(h)); }  // faces are triangles
+    static Halfedge twin(Halfedge h) { return Halfedge(h.idx ^ 1u); }
+    static Edge edge(Halfedge h) { return Edge(h.idx >> 1); }
+    static Halfedge halfedge(Edge e, int i) { return Halfedge((e.idx << 1) | std::uint32_t(i)); }
+    Face face(Halfedge h) const { return Face(he_face_[h.idx]); }
+    Halfedge halfedge(Vertex v) const { return Halfedge(vhe_[v.idx]); }  // an outgoing one
+    Halfedge halfedge(Face f) const { return Halfedge(fhe_[f.idx]); }
+    // Next outgoing half-edge of from(h), counter-clockwise / clockwise.
+    Halfedge ccw_rotated(Halfedge h) const { return twin(prev(h)); }
+    Halfedge cw_rotated(Halfedge h) const { return next(twin(h)); }
+    // The half-edge a -> b, or an invalid handle when a and b are not adjacent. O(valence(a)).
+    Halfedge find_halfedge(Vertex a, Vertex b) const;
+    std::uint32_t valence(Vertex v) const;
+
+    // ---- circulators ------------------------------------------------------------------------
+    // Visit the one-ring of v counter-clockwise: f(Halfedge outgoing) / f(Vertex) / f(Face).
+    template <class F> void for_each_outgoing(Vertex v, F&& f) const {
+        const Halfedge start = halfedge(v);
+        Halfedge h = start;
+        do {
+            f(h);
+            h = ccw_rotated(h);
+        } while (h != start);
+    }
+    template <class F> void for_each_neighbor(Vertex v, F&& f) const {
+        for_each_outgoing(v, [&](Halfedge h) { f(to(h)); });
+    }
+    template <class F> void for_each_face_around(Vertex v, F&& f) const {
+        for_each_outgoing(v, [&](Halfedge h) { f(face(h)); });
+    }
+
+    // ---- geometry ---------------------------------------------------------------------------
+    const Vec3& position(Vertex v) const { return vpos_[v.idx]; }
+    void set_position(Vertex v, const Vec3& p) { vpos_[v.idx] = p; }
+    const std::vector<Vec3>& positions() const { return vpos_; }  // indexed by slot
+    Vec3 face_normal(Face f) const;       // unit (zero for a degenerate face)
+    float face_area(Face f) const;
+    Vec3 face_centroid(Face f) const;
+    Vec3 vertex_normal(Vertex v) const;   // area-weighted mean of the incident face normals, unit
+
+    // ---- topology operations ----------------------------------------------------------------
+    // Vertex split. `to_c` and `to_d` are two different outgoing half-edges of the same vertex b
+    // (towards neighbours c and d). The outgoing half-edges from `to_c` counter-clockwise up to
+    // `to_d`, both included, move to a new vertex a at position p; the new faces (a, b, c) and
+    // (b, a, d) close the gap. a gets valence k+1 (k = moved half-edges, 2 <= k <= valence(b)),
+    // b ends with valence(b) - k + 3, c and d gain one. Returns a. Inverse: collapse(a -> b).
+    bool can_split(Halfedge to_c, Halfedge to_d) const;
+    Vertex split(Halfedge to_c, Halfedge to_d, const Vec3& p);
+
+    // Edge collapse of h = (a -> b): a is removed and its neighbours join b (b keeps its
+    // position; the caller moves it if it wants). Allowed when the mesh has more than four
+    // vertices, the link condition holds (a and b share exactly the two neighbours opposite h),
+    // and no vertex would be left with valence below 3.
+    bool can_collapse(Halfedge h) const;
+    void collapse(Halfedge h);
+
+    // Edge flip: the edge of h, between faces (a, b, c) and (b, a, d), becomes the edge c-d.
+    // Allowed when c and d are not already adjacent and a and b keep valence >= 3.
+    // The half-edge slot h becomes d -> c. unflip(flip(h)) restores every array bit for bit.
+    bool can_flip(Halfedge h) const;
+    FlipRecord flip(Halfedge h);
+    void unflip(const FlipRecord& r);
+
+    // Each operation behind its predicate: a refused operation returns false (an invalid vertex
+    // for try_split) and leaves the mesh untouched.
+    Vertex try_split(Halfedge to_c, Halfedge to_d, const Vec3& p) {
+        return can_split(to_c, to_d) ? split(to_c, to_d, p) : Vertex();
+    }
+    bool try_collapse(Halfedge h) {
+        if (!can_collapse(h)) return false;
+        collapse(h);
+        return true;
+    }
+    bool try_flip(Halfedge h, FlipRecord* record = nullptr) {
+        if (!can_flip(h)) return false;
+        const FlipRecord r = flip(h);
+        if (record) *record = r;
+        return true;
+    }
+
+    // ---- export -----------------------------------------------------------------------------
+    // Dense arrays of the alive elements. Vertex order follows the slot order; `vertex_map` (if
+    // given) receives, per slot, the dense index or kInvalidIndex for a free slot.
+    IndexedMesh to_indexed(std::vector<std::uint32_t>* vertex_map = nullptr) const;
+
+    // Raw access for the validator and for bit-for-bit comparisons in tests.
+    bool same_arrays(const Mesh& o) const;
+
+    // Free-list heads (kInvalidIndex when empty); for the validator.
+    std::uint32_t free_vertex_head() const { return vfree_; }
+    std::uint32_t free_face_head() const { return ffree_; }
+    std::uint32_t free_edge_head() const { return efree_; }
+    // The next slot after a free one (its connectivity field holds it).
+    std::uint32_t next_free_vertex(std::uint32_t v) const { return vhe_[v]; }
+    std::uint32_t next_free_face(std::uint32_t f) const { return fhe_[f]; }
+    std::uint32_t next_free_edge(std::uint32_t e) const { return he_next_[2 * e]; }
+
+private:
+    friend struct MeshTestAccess;  // defined by the test suite only, to damage meshes on purpose
+
+    Vertex new_vertex(const Vec3& p);
+    Face new_face();
+    Edge new_edge();
+    void delete_vertex(Vertex v);
+    void delete_face(Face f);
+    void delete_edge(Edge e);
+    // Make the half-edges (h0, h1, h2) one face f, pointing to (v0, v1, v2).
+    void link_face(Face f, Halfedge h0, Halfedge h1, Halfedge h2);
+    // Put `by` where `old` is in old's face (same face, same neighbours in the cycle).
+    void replace_in_face(Halfedge old, Halfedge by);
+
+    std::vector<Vec3> vpos_;
+    std::vector<std::uint32_t> vhe_;      // outgoing half-edge, or next free vertex
+    std::vector<std::uint8_t> vremoved_;
+    std::vector<std::uint32_t> he_to_;
+    std::vector<std::uint32_t> he_next_;  // for edge e's first half-edge: next free edge if dead
+    std::vector<std::uint32_t> he_face_;
+    std::vector<std::uint8_t> eremoved_;
+    std::vector<std::uint32_t> fhe_;      // a half-edge of the face, or next free face
+    std::vector<std::uint8_t> fremoved_;
+    std::uint32_t vfree_ = kInvalidIndex, ffree_ = kInvalidIndex, efree_ = kInvalidIndex;
+    std::uint32_t n_vertices_ = 0, n_faces_ = 0, n_edges_ = 0;
+};
+
+}  // namespace nmesh

@@ -1,0 +1,168 @@
+#include "nmesh/mesh_check.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <vector>
+
+namespace nmesh {
+namespace {
+
+struct Checker {
+    const Mesh& m;
+    std::ostringstream err;
+    bool failed = false;
+
+    template <class... T> bool fail(const T&... parts) {
+        if (!failed) {
+            failed = true;
+            (err << ... << parts);
+        }
+        return false;
+    }
+
+    bool vertex_ok(std::uint32_t v) const { return v < m.vertex_capacity() && !m.is_removed(Vertex(v)); }
+    bool face_ok(std::uint32_t f) const { return f < m.face_capacity() && !m.is_removed(Face(f)); }
+    bool halfedge_ok(std::uint32_t h) const { return h < m.halfedge_capacity() && !m.is_removed(Halfedge(h)); }
+
+    // Walks a free list; every slot on it must be free, and it must hold all free slots.
+    template <class Removed, class Next>
+    bool free_list(const char* what, std::uint32_t head, std::uint32_t capacity, std::uint32_t alive,
+                   Removed removed, Next next_free) {
+        std::uint32_t count = 0;
+        for (std::uint32_t s = head; s != kInvalidIndex; s = next_free(s)) {
+            if (s >= capacity) return fail(what, " free list: slot ", s, " is out of range");
+            if (!removed(s)) return fail(what, " free list: slot ", s, " is alive");
+            if (++count > capacity) return fail(what, " free list has a cycle");
+        }
+        if (count + alive != capacity)
+            return fail(what, " free list holds ", count, " slots but ", capacity - alive, " are free");
+        return true;
+    }
+
+    bool counts() {
+        std::uint32_t v = 0, f = 0, e = 0;
+        for (std::uint32_t i = 0; i < m.vertex_capacity(); ++i) v += !m.is_removed(Vertex(i));
+        for (std::uint32_t i = 0; i < m.face_capacity(); ++i) f += !m.is_removed(Face(i));
+        for (std::uint32_t i = 0; i < m.edge_capacity(); ++i) e += !m.is_removed(Edge(i));
+        if (v != m.n_vertices()) return fail("vertex count ", m.n_vertices(), " but ", v, " alive slots");
+        if (f != m.n_faces()) return fail("face count ", m.n_faces(), " but ", f, " alive slots");
+        if (e != m.n_edges()) return fail("edge count ", m.n_edges(), " but ", e, " alive slots");
+        return free_list("vertex", m.free_vertex_head(), m.vertex_capacity(), v,
+                         [&](std::uint32_t s) { return m.is_removed(Vertex(s)); },
+                         [&](std::uint32_t s) { return m.next_free_vertex(s); }) &&
+               free_list("face", m.free_face_head(), m.face_capacity(), f,
+                         [&](std::uint32_t s) { return m.is_removed(Face(s)); },
+                         [&](std::uint32_t s) { return m.next_free_face(s); }) &&
+               free_list("edge", m.free_edge_head(), m.edge_capacity(), e,
+                         [&](std::uint32_t s) { return m.is_removed(Edge(s)); },
+                         [&](std::uint32_t s) { return m.next_free_edge(s); });
+    }
+
+    bool halfedges() {
+        for (std::uint32_t i = 0; i < m.halfedge_capacity(); ++i) {
+            const Halfedge h(i);
+            if (m.is_removed(h)) continue;
+            const std::uint32_t to = m.to(h).idx, nx = m.next(h).idx, f = m.face(h).idx;
+            if (!vertex_ok(to)) return fail("half-edge ", i, " points to vertex ", to, ", which is not alive");
+            if (!halfedge_ok(nx)) return fail("half-edge ", i, ": next ", nx, " is not alive");
+            if (!face_ok(f)) return fail("half-edge ", i, ": face ", f, " is not alive");
+            if (nx == i) return fail("half-edge ", i, " is its own next");
+            const Halfedge n2 = m.next(Halfedge(nx));
+            if (!halfedge_ok(n2.idx) || m.next(n2).idx != i)
+                return fail("half-edge ", i, ": the next cycle does not close after 3 steps");
+            if (m.face(Halfedge(nx)).idx != f || m.face(n2).idx != f)
+                return fail("half-edge ", i, ": its next cycle spans several faces");
+            const std::uint32_t origin = m.to(n2).idx;  // target of prev
+            if (m.to(Mesh::twin(h)).idx != origin)
+                return fail("half-edge ", i, ": inconsistent orientation (twin ends at ",
+                            m.to(Mesh::twin(h)).idx, ", previous half-edge ends at ", origin, ")");
+            if (origin == to) return fail("half-edge ", i, " is a loop at vertex ", to);
+        }
+        return true;
+    }
+
+    bool faces() {
+        for (std::uint32_t f = 0; f < m.face_capacity(); ++f) {
+            if (m.is_removed(Face(f))) continue;
+            const std::uint32_t h = m.halfedge(Face(f)).idx;
+            if (!halfedge_ok(h)) return fail("face ", f, ": half-edge ", h, " is not alive");
+            if (m.face(Halfedge(h)).idx != f) return fail("face ", f, ": its half-edge ", h, " belongs to face ", m.face(Halfedge(h)).idx);
+        }
+        if (2 * std::uint64_t(m.n_edges()) != 3 * std::uint64_t(m.n_faces()))
+            return fail("2E != 3F (E = ", m.n_edges(), ", F = ", m.n_faces(), ")");
+        return true;
+    }
+
+    bool vertices() {
+        std::vector<std::uint32_t> out_degree(m.vertex_capacity(), 0);
+        for (std::uint32_t i = 0; i < m.halfedge_capacity(); ++i)
+            if (!m.is_removed(Halfedge(i))) ++out_degree[m.from(Halfedge(i)).idx];
+        std::vector<std::uint32_t> stamp(m.vertex_capacity(), kInvalidIndex);
+        for (std::uint32_t v = 0; v < m.vertex_capacity(); ++v) {
+            if (m.is_removed(Vertex(v))) continue;
+            const Halfedge start = m.halfedge(Vertex(v));
+            if (!halfedge_ok(start.idx)) return fail("vertex ", v, ": half-edge ", start.idx, " is not alive");
+            if (m.from(start).idx != v) return fail("vertex ", v, ": its half-edge ", start.idx, " leaves vertex ", m.from(start).idx);
+            std::uint32_t ring = 0;
+            Halfedge h = start;
+            do {
+                const std::uint32_t u = m.to(h).idx;
+                if (stamp[u] == v) return fail("vertex ", v, ": neighbour ", u, " appears twice (duplicate edge)");
+                stamp[u] = v;
+                if (++ring > out_degree[v]) break;
+                h = m.ccw_rotated(h);
+            } while (h != start);
+            if (ring != out_degree[v])
+                return fail("vertex ", v, ": its one-ring is not a single cycle (", ring, " half-edges in the rotation, ",
+                            out_degree[v], " leave the vertex)");
+            if (ring < 3) return fail("vertex ", v, " has valence ", ring);
+        }
+        return true;
+    }
+
+    bool topology() {
+        const std::int64_t chi = std::int64_t(m.n_vertices()) - m.n_edges() + m.n_faces();
+        if (chi != 2) return fail("Euler characteristic V - E + F = ", chi, ", not 2");
+        if (m.n_vertices() == 0) return true;
+        std::vector<std::uint8_t> seen(m.vertex_capacity(), 0);
+        std::vector<std::uint32_t> stack;
+        std::uint32_t first = 0;
+        while (m.is_removed(Vertex(first))) ++first;
+        stack.push_back(first);
+        seen[first] = 1;
+        std::uint32_t reached = 1;
+        while (!stack.empty()) {
+            const Vertex v(stack.back());
+            stack.pop_back();
+            m.for_each_neighbor(v, [&](Vertex u) {
+                if (!seen[u.idx]) {
+                    seen[u.idx] = 1;
+                    ++reached;
+                    stack.push_back(u.idx);
+                }
+            });
+        }
+        if (reached != m.n_vertices()) return fail("the mesh is not connected (", reached, " of ", m.n_vertices(), " vertices reachable)");
+        return true;
+    }
+};
+
+}  // namespace
+
+ManifoldCheck check_manifold(const Mesh& mesh) {
+    Checker c{mesh, {}, false};
+    // Each stage relies on the previous ones (e.g. the rotation walk needs valid next cycles).
+    const bool ok = c.counts() && c.halfedges() && c.faces() && c.vertices() && c.topology();
+    return ManifoldCheck{ok, ok ? std::string() : c.err.str()};
+}
+
+void assert_manifold(const Mesh& mesh, const char* after) {
+    const ManifoldCheck r = check_manifold(mesh);
+    if (!r.ok) {
+        std::fprintf(stderr, "nmesh: invalid mesh after %s: %s\n", after, r.error.c_str());
+        std::abort();
+    }
+}
+
+}  // namespace nmesh

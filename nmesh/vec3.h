@@ -1,0 +1,53 @@
+// nmesh/vec3.h — the 3-component float vector used for every position in nmesh.
+//
+// A plain 12-byte aggregate (no alignment padding), so arrays of points cost 12 bytes each and
+// the public headers stay free of third-party types.
+#pragma once
+
+#include <cmath>
+
+namespace nmesh {
+
+struct Vec3 {
+    float x = 0.0f, y = 0.0f, z = 0.0f;
+
+    constexpr Vec3() = default;
+    constexpr Vec3(float x_, float y_, float z_) : x(x_), y(y_), z(z_) {}
+
+    constexpr float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+    float& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
+
+    constexpr Vec3 operator+(const Vec3& o) const { return {x + o.x, y + o.y, z + o.z}; }
+    constexpr Vec3 operator-(const Vec3& o) const { return {x - o.x, y - o.y, z - o.z}; }
+    constexpr Vec3 operator-() const { return {-x, -y, -z}; }
+    constexpr Vec3 operator*(float s) const { return {x * s, y * s, z * s}; }
+    constexpr Vec3 operator/(float s) const { return {x / s, y / s, z / s}; }
+    Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }
+    Vec3& operator-=(const Vec3& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
+    Vec3& operator*=(float s) { x *= s; y *= s; z *= s; return *this; }
+    constexpr bool operator==(const Vec3& o) const { return x == o.x && y == o.y && z == o.z; }
+    constexpr bool operator!=(const Vec3& o) const { return !(*this == o); }
+};
+
+constexpr Vec3 operator*(float s, const Vec3& v) { return v * s; }
+constexpr float dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr Vec3 cross(const Vec3& a, const Vec3& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+constexpr float squared_norm(const Vec3& v) { return dot(v, v); }
+inline float norm(const Vec3& v) { return std::sqrt(squared_norm(v)); }
+constexpr float squared_distance(const Vec3& a, const Vec3& b) { return squared_norm(a - b); }
+inline float distance(const Vec3& a, const Vec3& b) { return std::sqrt(squared_distance(a, b)); }
+// v / |v|, or the zero vector when |v| is 0 (no NaN escapes).
+inline Vec3 normalized(const Vec3& v) {
+    const float n = norm(v);
+    return n > 0.0f ? v / n : Vec3{};
+}
+inline Vec3 min(const Vec3& a, const Vec3& b) {
+    return {std::fmin(a.x, b.x), std::fmin(a.y, b.y), std::fmin(a.z, b.z)};
+}
+inline Vec3 max(const Vec3& a, const Vec3& b) {
+    return {std::fmax(a.x, b.x), std::fmax(a.y, b.y), std::fmax(a.z, b.z)};
+}
+
+}  // namespace nmesh

@@ -1,0 +1,326 @@
+// Hand-built cases for the half-edge mesh: construction, circulators, geometry, and each
+// operation and each refusal on a mesh small enough to reason about.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <set>
+
+#include "mesh_fixtures.h"
+#include "nmesh/error.h"
+#include "nmesh/mesh.h"
+#include "nmesh/mesh_check.h"
+
+using namespace nmesh;
+using nmesh::test::bipyramid;
+using nmesh::test::face_set;
+using nmesh::test::icosahedron;
+using nmesh::test::octahedron;
+
+namespace {
+std::set<std::uint32_t> neighbours(const Mesh& m, Vertex v) {
+    std::set<std::uint32_t> s;
+    m.for_each_neighbor(v, [&](Vertex u) { s.insert(u.idx); });
+    return s;
+}
+}  // namespace
+
+TEST_CASE("a default handle is invalid") {
+    CHECK_FALSE(Vertex().valid());
+    CHECK_FALSE(Halfedge().valid());
+    CHECK(Face(3).valid());
+    CHECK(sizeof(Vertex) == 4);
+}
+
+TEST_CASE("the tetrahedron is a valid closed manifold with outward faces") {
+    const Vec3 center{1, 2, 3};
+    const Mesh m = Mesh::tetrahedron(center, 2.0f);
+    REQUIRE(check_manifold(m).ok);
+    CHECK(m.n_vertices() == 4);
+    CHECK(m.n_edges() == 6);
+    CHECK(m.n_faces() == 4);
+    for (std::uint32_t v = 0; v < 4; ++v) {
+        CHECK(m.valence(Vertex(v)) == 3);
+        CHECK(distance(m.position(Vertex(v)), center) == doctest::Approx(2.0f).epsilon(1e-5));
+        // The area-weighted normal of a regular tetrahedron's corner points away from the center.
+        const Vec3 out = normalized(m.position(Vertex(v)) - center);
+        CHECK(dot(m.vertex_normal(Vertex(v)), out) == doctest::Approx(1.0f).epsilon(1e-5));
+    }
+    // Edge length of a regular tetrahedron inscribed in radius r is r * sqrt(8/3).
+    const float edge = 2.0f * std::sqrt(8.0f / 3.0f);
+    for (std::uint32_t f = 0; f < 4; ++f) {
+        CHECK(m.face_area(Face(f)) == doctest::Approx(std::sqrt(3.0f) / 4 * edge * edge).epsilon(1e-4));
+        const Vec3 c = m.face_centroid(Face(f));
+        CHECK(dot(m.face_normal(Face(f)), normalized(c - center)) == doctest::Approx(1.0f).epsilon(1e-5));
+    }
+}
+
+TEST_CASE("a tetrahedron from four points faces outward in either input order") {
+    const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0}, d{0, 0, 1};
+    for (const Mesh& m : {Mesh::tetrahedron(a, b, c, d), Mesh::tetrahedron(a, c, b, d)}) {
+        REQUIRE(check_manifold(m).ok);
+        const Vec3 center = (a + b + c + d) * 0.25f;
+        for (std::uint32_t f = 0; f < 4; ++f)
+            CHECK(dot(m.face_normal(Face(f)), m.face_centroid(Face(f)) - center) > 0.0f);
+    }
+}
+
+TEST_CASE("circulators visit the one-ring counter-clockwise, once each") {
+    const Mesh m = octahedron();
+    // Vertex 4 is (0, 0, 1); seen from above its neighbours 0 (+x), 2 (+y), 1 (-x), 3 (-y) are
+    // counter-clockwise in that order.
+    std::vector<std::uint32_t> ring;
+    m.for_each_neighbor(Vertex(4), [&](Vertex u) { ring.push_back(u.idx); });
+    REQUIRE(ring.size() == 4);
+    const std::vector<std::uint32_t> order{0, 2, 1, 3};
+    const auto start = std::find(order.begin(), order.end(), ring[0]) - order.begin();
+    for (std::size_t i = 0; i < 4; ++i) CHECK(ring[i] == order[(start + i) % 4]);
+    std::set<std::uint32_t> faces;
+    m.for_each_face_around(Vertex(4), [&](Face f) { faces.insert(f.idx); });
+    CHECK(faces.size() == 4);
+    std::size_t outgoing = 0;
+    m.for_each_outgoing(Vertex(4), [&](Halfedge h) {
+        CHECK(m.from(h) == Vertex(4));
+        ++outgoing;
+    });
+    CHECK(outgoing == 4);
+    CHECK(m.find_halfedge(Vertex(4), Vertex(5)).valid() == false);
+    CHECK(m.to(m.find_halfedge(Vertex(4), Vertex(2))) == Vertex(2));
+}
+
+TEST_CASE("from_indexed rejects what is not a closed genus-0 manifold") {
+    IndexedMesh open;
+    open.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    open.triangles = {{0, 1, 2}};
+    CHECK_THROWS_AS(Mesh::from_indexed(open), InputError);
+    IndexedMesh flipped = octahedron().to_indexed();
+    std::swap(flipped.triangles[0][0], flipped.triangles[0][1]);
+    CHECK_THROWS_AS(Mesh::from_indexed(flipped), InputError);
+    IndexedMesh bad_index = octahedron().to_indexed();
+    bad_index.triangles[2][1] = 17;
+    CHECK_THROWS_AS(Mesh::from_indexed(bad_index), InputError);
+}
+
+TEST_CASE("to_indexed and from_indexed round trip") {
+    const Mesh m = icosahedron();
+    const IndexedMesh dense = m.to_indexed();
+    CHECK(dense.positions.size() == 12);
+    CHECK(dense.triangles.size() == 20);
+    const Mesh back = Mesh::from_indexed(dense);
+    CHECK(face_set(back) == face_set(m));
+}
+
+TEST_CASE("the collapse floor: a tetrahedron cannot shrink") {
+    Mesh m = Mesh::tetrahedron();
+    const Mesh before = m;
+    for (std::uint32_t h = 0; h < m.halfedge_capacity(); ++h) {
+        CHECK_FALSE(m.can_collapse(Halfedge(h)));
+        CHECK_FALSE(m.try_collapse(Halfedge(h)));
+    }
+    CHECK(m.same_arrays(before));
+}
+
+TEST_CASE("no edge of a tetrahedron can be flipped (the opposite vertices are adjacent)") {
+    Mesh m = Mesh::tetrahedron();
+    const Mesh before = m;
+    for (std::uint32_t h = 0; h < m.halfedge_capacity(); ++h) CHECK_FALSE(m.try_flip(Halfedge(h)));
+    CHECK(m.same_arrays(before));
+}
+
+TEST_CASE("the link condition refuses a collapse that would pinch the surface") {
+    Mesh m = bipyramid();
+    const Mesh before = m;
+    // Equator edge 0-1: 0 and 1 share the apexes 3, 4 and the third equator vertex 2.
+    const Halfedge h = m.find_halfedge(Vertex(0), Vertex(1));
+    REQUIRE(h.valid());
+    CHECK_FALSE(m.can_collapse(h));
+    CHECK_FALSE(m.try_collapse(h));
+    CHECK(m.same_arrays(before));
+    // An apex edge 3 -> 0 passes the link condition, but 3's other neighbours 1 and 2 have
+    // valence 4 and 0 would end with valence 3 + 4 - 4 = 3: allowed, and it leaves a tetrahedron.
+    const Halfedge apex = m.find_halfedge(Vertex(3), Vertex(0));
+    REQUIRE(m.can_collapse(apex));
+    m.collapse(apex);
+    REQUIRE(check_manifold(m).ok);
+    CHECK(m.n_vertices() == 4);
+    CHECK(m.is_removed(Vertex(3)));
+}
+
+TEST_CASE("a second link-condition case: a bipyramid made from an octahedron") {
+    // On a closed manifold with more than four vertices the link condition already implies that
+    // no vertex drops below valence 3, so this is the refusal a learning run meets in practice.
+    Mesh m = octahedron();
+    // Collapse 5 -> 0: 0 takes 5's neighbours; 2 and 3 drop to valence 3 and become apexes.
+    REQUIRE(m.try_collapse(m.find_halfedge(Vertex(5), Vertex(0))));
+    REQUIRE(check_manifold(m).ok);
+    CHECK(m.valence(Vertex(2)) == 3);
+    CHECK(m.valence(Vertex(3)) == 3);
+    // 0 and 4 now share 1, 2 and 3.
+    const Mesh before = m;
+    CHECK_FALSE(m.try_collapse(m.find_halfedge(Vertex(0), Vertex(4))));
+    CHECK(m.same_arrays(before));
+}
+
+TEST_CASE("a flip that would leave a valence-2 vertex is refused") {
+    Mesh m = bipyramid();
+    const Mesh before = m;
+    // Edges at the valence-3 apexes cannot flip.
+    for (std::uint32_t apex : {3u, 4u})
+        m.for_each_outgoing(Vertex(apex), [&](Halfedge h) { CHECK_FALSE(m.can_flip(h)); });
+    Halfedge h = m.find_halfedge(Vertex(0), Vertex(3));
+    CHECK_FALSE(m.try_flip(h));
+    CHECK(m.same_arrays(before));
+    // An equator edge can: it becomes the apex-to-apex edge 3-4.
+    h = m.find_halfedge(Vertex(0), Vertex(1));
+    REQUIRE(m.try_flip(h));
+    REQUIRE(check_manifold(m).ok);
+    CHECK(((m.from(h) == Vertex(3) && m.to(h) == Vertex(4)) || (m.from(h) == Vertex(4) && m.to(h) == Vertex(3))));
+    CHECK(m.find_halfedge(Vertex(0), Vertex(1)).valid() == false);
+}
+
+TEST_CASE("flip then unflip restores every array bit for bit") {
+    Mesh m = icosahedron();
+    for (std::uint32_t h = 0; h < m.halfedge_capacity(); ++h) {
+        const Mesh before = m;
+        FlipRecord r;
+        REQUIRE(m.try_flip(Halfedge(h), &r));
+        REQUIRE(check_manifold(m).ok);
+        CHECK_FALSE(m.same_arrays(before));
+        m.unflip(r);
+        CHECK(m.same_arrays(before));
+    }
+}
+
+TEST_CASE("vertex split divides the ring as asked, and collapse undoes it") {
+    Mesh m = icosahedron();
+    const auto faces_before = face_set(m);
+    const Vertex b(0);
+    const auto ring_before = neighbours(m, b);
+    // Take neighbours c and d two steps apart: a gets c, the one between, and d.
+    const Halfedge to_c = m.halfedge(b);
+    const Halfedge to_d = m.ccw_rotated(m.ccw_rotated(to_c));
+    const Vertex c = m.to(to_c), mid = m.to(m.ccw_rotated(to_c)), d = m.to(to_d);
+    const Vec3 p{0.1f, 0.2f, 0.3f};
+    const Vertex a = m.split(to_c, to_d, p);
+    REQUIRE(check_manifold(m).ok);
+    CHECK(m.n_vertices() == 13);
+    CHECK(m.position(a) == p);
+    CHECK(neighbours(m, a) == std::set<std::uint32_t>{b.idx, c.idx, mid.idx, d.idx});
+    auto expect_b = ring_before;
+    expect_b.erase(mid.idx);
+    expect_b.insert(a.idx);
+    CHECK(neighbours(m, b) == expect_b);
+    CHECK(m.valence(c) == 6);
+    CHECK(m.valence(d) == 6);
+    CHECK(m.find_halfedge(a, b).valid());
+    // Collapsing the new edge a -> b restores the combinatorics.
+    REQUIRE(m.try_collapse(m.find_halfedge(a, b)));
+    REQUIRE(check_manifold(m).ok);
+    CHECK(face_set(m) == faces_before);
+}
+
+TEST_CASE("split refusals and extremes") {
+    Mesh m = Mesh::tetrahedron();
+    const Halfedge h = m.halfedge(Vertex(0));
+    const Mesh before = m;
+    CHECK_FALSE(m.try_split(h, h, {}).valid());                      // same half-edge
+    CHECK_FALSE(m.try_split(h, m.halfedge(Vertex(1)), {}).valid());  // different vertices
+    CHECK_FALSE(m.try_split(Halfedge(), h, {}).valid());
+    CHECK(m.same_arrays(before));
+    // Moving the whole ring but one: b keeps only a, c and d (valence 3).
+    const Halfedge to_d = m.cw_rotated(h);
+    const Vertex a = m.split(h, to_d, {});
+    REQUIRE(check_manifold(m).ok);
+    CHECK(m.valence(Vertex(0)) == 3);
+    CHECK(m.valence(a) == 4);
+}
+
+TEST_CASE("free slots are reused before the arrays grow") {
+    Mesh m = octahedron();
+    const std::uint32_t vcap = m.vertex_capacity(), ecap = m.edge_capacity(), fcap = m.face_capacity();
+    REQUIRE(m.try_collapse(m.find_halfedge(Vertex(5), Vertex(0))));
+    CHECK(m.free_vertex_head() == 5);
+    const Halfedge to_c = m.halfedge(Vertex(0));
+    const Vertex a = m.split(to_c, m.ccw_rotated(to_c), {});
+    CHECK(a == Vertex(5));
+    CHECK(m.vertex_capacity() == vcap);
+    CHECK(m.edge_capacity() == ecap);
+    CHECK(m.face_capacity() == fcap);
+    CHECK(check_manifold(m).ok);
+}
+
+namespace nmesh {
+// Damages meshes on purpose so that each of the validator's checks is seen to fire.
+struct MeshTestAccess {
+    static std::vector<std::uint32_t>& to(Mesh& m) { return m.he_to_; }
+    static std::vector<std::uint32_t>& next(Mesh& m) { return m.he_next_; }
+    static std::vector<std::uint32_t>& vhe(Mesh& m) { return m.vhe_; }
+    static std::vector<std::uint32_t>& fhe(Mesh& m) { return m.fhe_; }
+    static std::uint32_t& vfree(Mesh& m) { return m.vfree_; }
+    static std::vector<std::uint8_t>& fremoved(Mesh& m) { return m.fremoved_; }
+};
+}  // namespace nmesh
+
+namespace {
+void expect_error(const Mesh& m, const char* fragment) {
+    const ManifoldCheck r = check_manifold(m);
+    CHECK_FALSE(r.ok);
+    INFO("message: " << r.error);
+    CHECK(r.error.find(fragment) != std::string::npos);
+}
+}  // namespace
+
+TEST_CASE("the validator names the first violation") {
+    using A = MeshTestAccess;
+    CHECK(check_manifold(icosahedron()).ok);
+    CHECK(check_manifold(icosahedron()).error.empty());
+    expect_error(Mesh(), "Euler");  // V - E + F = 0 for the empty mesh
+    {
+        Mesh m = icosahedron();  // a half-edge retargeted: its twin no longer runs opposite
+        A::to(m)[0] = (A::to(m)[0] + 1) % 12;
+        expect_error(m, "half-edge");
+    }
+    {
+        Mesh m = icosahedron();  // a next cycle of length 2
+        const std::uint32_t n = A::next(m)[0];
+        A::next(m)[n] = 0;
+        expect_error(m, "half-edge");
+    }
+    {
+        Mesh m = icosahedron();  // a vertex whose stored half-edge does not leave it
+        A::vhe(m)[0] = A::vhe(m)[0] ^ 1u;
+        expect_error(m, "vertex 0");
+    }
+    {
+        Mesh m = icosahedron();  // a face pointing at another face's half-edge
+        A::fhe(m)[0] = A::fhe(m)[1];
+        expect_error(m, "face 0");
+    }
+    {
+        Mesh m = icosahedron();  // an alive face marked free: elements refer to a freed slot
+        A::fremoved(m)[3] = 1;
+        expect_error(m, "face count");
+    }
+    {
+        Mesh m = icosahedron();  // a free list that points at an alive slot
+        A::vfree(m) = 2;
+        expect_error(m, "free list");
+    }
+    {
+        // Two tetrahedra glued by relabelling are disconnected: V - E + F = 4.
+        IndexedMesh two = Mesh::tetrahedron().to_indexed();
+        const IndexedMesh one = two;
+        for (const Vec3& p : one.positions) two.positions.push_back(p + Vec3{5, 0, 0});
+        for (auto t : one.triangles) two.triangles.push_back({t[0] + 4, t[1] + 4, t[2] + 4});
+        CHECK_THROWS_WITH_AS(Mesh::from_indexed(two), doctest::Contains("Euler"), InputError);
+    }
+    {
+        // A torus-like handle would have V - E + F = 0; a pinched vertex (two cones sharing an
+        // apex) is caught by the one-ring check.
+        IndexedMesh pinch;
+        pinch.positions = {{0, 0, 0}, {1, 0, 1}, {-1, 1, 1}, {-1, -1, 1}, {1, 0, -1}, {-1, 1, -1}, {-1, -1, -1}, {0, 0, 2}, {0, 0, -2}};
+        // Apex 0 joins two closed cones: (0,1,2,3 + cap 7) and (0,4,5,6 + cap 8).
+        pinch.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 7, 2}, {2, 7, 3}, {3, 7, 1},
+                           {0, 5, 4}, {0, 6, 5}, {0, 4, 6}, {4, 5, 8}, {5, 6, 8}, {6, 4, 8}};
+        CHECK_THROWS_WITH_AS(Mesh::from_indexed(pinch), doctest::Contains("one-ring"), InputError);
+    }
+}
