@@ -39,9 +39,9 @@ Mesh Mesh::tetrahedron(const Vec3& a, const Vec3& b_in, const Vec3& c_in, const 
     auto he = [&](std::uint32_t i, std::uint32_t j) { return halfedge(e[i][j], i < j ? 0 : 1); };
     for (const auto& t : tri) {
         const Face f = m.new_face();
-        m.he_to_[he(t[0], t[1]).idx] = v[t[1]].idx;
-        m.he_to_[he(t[1], t[2]).idx] = v[t[2]].idx;
-        m.he_to_[he(t[2], t[0]).idx] = v[t[0]].idx;
+        m.he_[he(t[0], t[1]).idx].to = v[t[1]].idx;
+        m.he_[he(t[1], t[2]).idx].to = v[t[2]].idx;
+        m.he_[he(t[2], t[0]).idx].to = v[t[0]].idx;
         m.link_face(f, he(t[0], t[1]), he(t[1], t[2]), he(t[2], t[0]));
     }
     for (std::uint32_t i = 0; i < 4; ++i) m.vhe_[v[i].idx] = he(i, (i + 1) % 4).idx;
@@ -90,8 +90,8 @@ Mesh Mesh::from_indexed(const IndexedMesh& in) {
             const Edge e = m.new_edge();
             he_of[c] = halfedge(e, 0).idx;
             he_of[opposite] = halfedge(e, 1).idx;
-            m.he_to_[halfedge(e, 0).idx] = b;
-            m.he_to_[halfedge(e, 1).idx] = a;
+            m.he_[halfedge(e, 0).idx].to = b;
+            m.he_[halfedge(e, 1).idx].to = a;
         }
     }
     for (std::size_t t = 0; t < in.triangles.size(); ++t) {
@@ -111,8 +111,7 @@ void Mesh::reserve(std::uint32_t n) {
     vhe_.reserve(n);
     vremoved_.reserve(n);
     const std::size_t ne = std::size_t(n) * 3, nh = ne * 2, nf = std::size_t(n) * 2;
-    he_to_.reserve(nh);
-    he_next_.reserve(nh);
+    he_.reserve(nh);
     he_face_.reserve(nh);
     eremoved_.reserve(ne);
     fhe_.reserve(nf);
@@ -155,13 +154,12 @@ Edge Mesh::new_edge() {
     ++n_edges_;
     if (efree_ != kInvalidIndex) {
         const std::uint32_t e = efree_;
-        efree_ = he_next_[2 * e];
+        efree_ = he_[2 * e].next;
         eremoved_[e] = 0;
         return Edge(e);
     }
     for (int i = 0; i < 2; ++i) {
-        he_to_.push_back(kInvalidIndex);
-        he_next_.push_back(kInvalidIndex);
+        he_.push_back({kInvalidIndex, kInvalidIndex});
         he_face_.push_back(kInvalidIndex);
     }
     eremoved_.push_back(0);
@@ -185,14 +183,14 @@ void Mesh::delete_face(Face f) {
 void Mesh::delete_edge(Edge e) {
     --n_edges_;
     eremoved_[e.idx] = 1;
-    he_next_[2 * e.idx] = efree_;
+    he_[2 * e.idx].next = efree_;
     efree_ = e.idx;
 }
 
 void Mesh::link_face(Face f, Halfedge h0, Halfedge h1, Halfedge h2) {
-    he_next_[h0.idx] = h1.idx;
-    he_next_[h1.idx] = h2.idx;
-    he_next_[h2.idx] = h0.idx;
+    he_[h0.idx].next = h1.idx;
+    he_[h1.idx].next = h2.idx;
+    he_[h2.idx].next = h0.idx;
     he_face_[h0.idx] = he_face_[h1.idx] = he_face_[h2.idx] = f.idx;
     fhe_[f.idx] = h0.idx;
 }
@@ -200,8 +198,8 @@ void Mesh::link_face(Face f, Halfedge h0, Halfedge h1, Halfedge h2) {
 void Mesh::replace_in_face(Halfedge old, Halfedge by) {
     const Halfedge p = prev(old), n = next(old);
     const Face f = face(old);
-    he_next_[p.idx] = by.idx;
-    he_next_[by.idx] = n.idx;
+    he_[p.idx].next = by.idx;
+    he_[by.idx].next = n.idx;
     he_face_[by.idx] = f.idx;
     if (fhe_[f.idx] == old.idx) fhe_[f.idx] = by.idx;
 }
@@ -248,7 +246,7 @@ Vec3 Mesh::vertex_normal(Vertex v) const {
     // their sum is the area-weighted normal sum.
     const Vec3& p = position(v);
     Vec3 n;
-    for_each_outgoing(v, [&](Halfedge h) {
+    for_each_outgoing_cw(v, [&](Halfedge h) {
         n += cross(position(to(h)) - p, position(to(next(h))) - p);
     });
     return normalized(n);
@@ -279,24 +277,24 @@ Vertex Mesh::split(Halfedge to_c, Halfedge to_d, const Vec3& p) {
     // Hand the outgoing half-edges to_c ... to_d (counter-clockwise) over to a. Rotation reads
     // only next(), so retargeting the twins while walking is safe.
     for (Halfedge o = to_c;; o = ccw_rotated(o)) {
-        he_to_[twin(o).idx] = a.idx;
+        he_[twin(o).idx].to = a.idx;
         if (o == to_d) break;
     }
 
     // The old half-edges c -> b (now c -> a) and b -> d (now a -> d) move into the new faces;
     // fresh half-edges take their places in the faces they leave.
     const Halfedge hp = twin(to_c), tn = to_d;
-    he_to_[on.idx] = b.idx;
+    he_[on.idx].to = b.idx;
     replace_in_face(hp, on);
-    he_to_[op.idx] = d.idx;
+    he_[op.idx].to = d.idx;
     replace_in_face(tn, op);
 
     // f0 = (a, b, c), f1 = (b, a, d).
-    he_to_[h.idx] = b.idx;
-    he_to_[hn.idx] = c.idx;
+    he_[h.idx].to = b.idx;
+    he_[hn.idx].to = c.idx;
     link_face(f0, h, hn, hp);
-    he_to_[t.idx] = a.idx;
-    he_to_[tp.idx] = b.idx;
+    he_[t.idx].to = a.idx;
+    he_[tp.idx].to = b.idx;
     link_face(f1, t, tn, tp);
 
     vhe_[a.idx] = h.idx;
@@ -343,7 +341,7 @@ void Mesh::collapse(Halfedge h) {
     const Halfedge on = twin(hn), op = twin(tp);
 
     // Everything that pointed to a now points to b.
-    for_each_outgoing(a, [&](Halfedge o) { he_to_[twin(o).idx] = b.idx; });
+    for_each_outgoing(a, [&](Halfedge o) { he_[twin(o).idx].to = b.idx; });
 
     replace_in_face(on, hp);  // hp = c -> b takes the place of the dying c -> b
     replace_in_face(op, tn);  // tn = b -> d takes the place of the dying b -> d
@@ -384,8 +382,8 @@ FlipRecord Mesh::flip(Halfedge h) {
     const Face f0 = face(h), f1 = face(t);
     FlipRecord r{h, halfedge(a), halfedge(b), {halfedge(f0), halfedge(f1)}};
 
-    he_to_[h.idx] = he_to_[hn.idx];  // c
-    he_to_[t.idx] = he_to_[tn.idx];  // d
+    he_[h.idx].to = he_[hn.idx].to;  // c
+    he_[t.idx].to = he_[tn.idx].to;  // d
     link_face(f0, h, hp, tn);
     link_face(f1, t, tp, hn);
     if (vhe_[a.idx] == h.idx) vhe_[a.idx] = tn.idx;
@@ -403,8 +401,8 @@ void Mesh::unflip(const FlipRecord& r) {
     const Halfedge x = next(h), y = next(x);
     const Halfedge u = next(t), w = next(u);
     const Face f0 = face(h), f1 = face(t);
-    he_to_[h.idx] = he_to_[u.idx];  // b
-    he_to_[t.idx] = he_to_[x.idx];  // a
+    he_[h.idx].to = he_[u.idx].to;  // b
+    he_[t.idx].to = he_[x.idx].to;  // a
     link_face(f0, h, w, x);
     link_face(f1, t, y, u);
     vhe_[from(h).idx] = r.old_out_from.idx;
@@ -439,8 +437,7 @@ IndexedMesh Mesh::to_indexed(std::vector<std::uint32_t>* vertex_map) const {
 }
 
 bool Mesh::same_arrays(const Mesh& o) const {
-    return vhe_ == o.vhe_ && vremoved_ == o.vremoved_ && he_to_ == o.he_to_ &&
-           he_next_ == o.he_next_ && he_face_ == o.he_face_ && eremoved_ == o.eremoved_ &&
+    return vhe_ == o.vhe_ && vremoved_ == o.vremoved_ && he_ == o.he_ && he_face_ == o.he_face_ && eremoved_ == o.eremoved_ &&
            fhe_ == o.fhe_ && fremoved_ == o.fremoved_ && vfree_ == o.vfree_ &&
            ffree_ == o.ffree_ && efree_ == o.efree_ && n_vertices_ == o.n_vertices_ &&
            n_faces_ == o.n_faces_ && n_edges_ == o.n_edges_ && vpos_.size() == o.vpos_.size() &&

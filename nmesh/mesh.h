@@ -74,8 +74,8 @@ public:
     // an algorithm are sized by them.
     std::uint32_t vertex_capacity() const { return std::uint32_t(vpos_.size()); }
     std::uint32_t face_capacity() const { return std::uint32_t(fhe_.size()); }
-    std::uint32_t edge_capacity() const { return std::uint32_t(he_to_.size() / 2); }
-    std::uint32_t halfedge_capacity() const { return std::uint32_t(he_to_.size()); }
+    std::uint32_t edge_capacity() const { return std::uint32_t(he_.size() / 2); }
+    std::uint32_t halfedge_capacity() const { return std::uint32_t(he_.size()); }
     // Reserve room for n vertices (and the ~2n faces and ~3n edges that come with them).
     void reserve(std::uint32_t n);
 
@@ -85,9 +85,9 @@ public:
     bool is_removed(Halfedge h) const { return eremoved_[h.idx >> 1] != 0; }
 
     // ---- connectivity -----------------------------------------------------------------------
-    Vertex to(Halfedge h) const { return Vertex(he_to_[h.idx]); }
+    Vertex to(Halfedge h) const { return Vertex(he_[h.idx].to); }
     Vertex from(Halfedge h) const { return to(twin(h)); }
-    Halfedge next(Halfedge h) const { return Halfedge(he_next_[h.idx]); }
+    Halfedge next(Halfedge h) const { return Halfedge(he_[h.idx].next); }
     Halfedge prev(Halfedge h) const { return next(next(h)); }  // faces are triangles
     static Halfedge twin(Halfedge h) { return Halfedge(h.idx ^ 1u); }
     static Edge edge(Halfedge h) { return Edge(h.idx >> 1); }
@@ -110,6 +110,16 @@ public:
         do {
             f(h);
             h = ccw_rotated(h);
+        } while (h != start);
+    }
+    // The same half-edges clockwise: one memory access per step instead of two, for loops that
+    // do not care about the order (sums over the ring).
+    template <class F> void for_each_outgoing_cw(Vertex v, F&& f) const {
+        const Halfedge start = halfedge(v);
+        Halfedge h = start;
+        do {
+            f(h);
+            h = cw_rotated(h);
         } while (h != start);
     }
     template <class F> void for_each_neighbor(Vertex v, F&& f) const {
@@ -183,7 +193,7 @@ public:
     // The next slot after a free one (its connectivity field holds it).
     std::uint32_t next_free_vertex(std::uint32_t v) const { return vhe_[v]; }
     std::uint32_t next_free_face(std::uint32_t f) const { return fhe_[f]; }
-    std::uint32_t next_free_edge(std::uint32_t e) const { return he_next_[2 * e]; }
+    std::uint32_t next_free_edge(std::uint32_t e) const { return he_[2 * e].next; }
 
 private:
     friend struct MeshTestAccess;  // defined by the test suite only, to damage meshes on purpose
@@ -202,8 +212,13 @@ private:
     std::vector<Vec3> vpos_;
     std::vector<std::uint32_t> vhe_;      // outgoing half-edge, or next free vertex
     std::vector<std::uint8_t> vremoved_;
-    std::vector<std::uint32_t> he_to_;
-    std::vector<std::uint32_t> he_next_;  // for edge e's first half-edge: next free edge if dead
+    // A half-edge's target and next side by side: the one-ring walks read both (one cache line).
+    struct HalfedgeLinks {
+        std::uint32_t to;
+        std::uint32_t next;  // for edge e's first half-edge: the next free edge if e is dead
+        bool operator==(const HalfedgeLinks& o) const { return to == o.to && next == o.next; }
+    };
+    std::vector<HalfedgeLinks> he_;
     std::vector<std::uint32_t> he_face_;
     std::vector<std::uint8_t> eremoved_;
     std::vector<std::uint32_t> fhe_;      // a half-edge of the face, or next free face

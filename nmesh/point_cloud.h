@@ -1,6 +1,6 @@
 // nmesh/point_cloud.h — an unorganized set of 3D points (the input of a reconstruction).
 //
-// Points are stored as 12-byte float triples. Readers produce a PointCloud (see io.h).
+// Points are stored as 12-byte float triples. Readers produce a PointCloud (see point_reader.h).
 #pragma once
 
 #include <cstddef>

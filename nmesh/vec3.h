@@ -29,6 +29,8 @@ struct Vec3 {
     constexpr bool operator!=(const Vec3& o) const { return !(*this == o); }
 };
 
+static_assert(sizeof(Vec3) == 12, "Vec3 must be three packed floats");
+
 constexpr Vec3 operator*(float s, const Vec3& v) { return v * s; }
 constexpr float dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 constexpr Vec3 cross(const Vec3& a, const Vec3& b) {

@@ -251,8 +251,8 @@ TEST_CASE("free slots are reused before the arrays grow") {
 namespace nmesh {
 // Damages meshes on purpose so that each of the validator's checks is seen to fire.
 struct MeshTestAccess {
-    static std::vector<std::uint32_t>& to(Mesh& m) { return m.he_to_; }
-    static std::vector<std::uint32_t>& next(Mesh& m) { return m.he_next_; }
+    static std::uint32_t& to(Mesh& m, std::uint32_t h) { return m.he_[h].to; }
+    static std::uint32_t& next(Mesh& m, std::uint32_t h) { return m.he_[h].next; }
     static std::vector<std::uint32_t>& vhe(Mesh& m) { return m.vhe_; }
     static std::vector<std::uint32_t>& fhe(Mesh& m) { return m.fhe_; }
     static std::uint32_t& vfree(Mesh& m) { return m.vfree_; }
@@ -276,13 +276,13 @@ TEST_CASE("the validator names the first violation") {
     expect_error(Mesh(), "Euler");  // V - E + F = 0 for the empty mesh
     {
         Mesh m = icosahedron();  // a half-edge retargeted: its twin no longer runs opposite
-        A::to(m)[0] = (A::to(m)[0] + 1) % 12;
+        A::to(m, 0) = (A::to(m, 0) + 1) % 12;
         expect_error(m, "half-edge");
     }
     {
         Mesh m = icosahedron();  // a next cycle of length 2
-        const std::uint32_t n = A::next(m)[0];
-        A::next(m)[n] = 0;
+        const std::uint32_t n = A::next(m, 0);
+        A::next(m, n) = 0;
         expect_error(m, "half-edge");
     }
     {

@@ -1,0 +1,90 @@
+// Benchmark of the learning loop: reconstructs a cloud several times and reports the median,
+// minimum and maximum wall time (learning only, file I/O excluded), iterations per second, and
+// in a separate profiled run the share of time in each phase.
+//
+//     bench_reconstruct CLOUD.ply [--vertices N] [--runs R] [--no-edge-swap] [--csv FILE]
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "nmesh/error.h"
+#include "nmesh/point_reader.h"
+#include "nmesh/reconstruct.h"
+
+namespace {
+
+struct Summary {
+    double median = 0, min = 0, max = 0;
+};
+
+Summary summarize(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return {n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]), v.front(), v.back()};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        std::fprintf(stderr, "usage: %s CLOUD [--vertices N] [--runs R] [--no-edge-swap] [--csv FILE]\n", argv[0]);
+        return 2;
+    }
+    nmesh::Parameters params;
+    params.target_vertices = 30000;
+    int runs = 5;
+    std::string csv;
+    for (int i = 2; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--vertices" && i + 1 < argc) params.target_vertices = std::uint32_t(std::atol(argv[++i]));
+        else if (a == "--runs" && i + 1 < argc) runs = std::max(1, std::atoi(argv[++i]));
+        else if (a == "--no-edge-swap") params.edge_swap = false;
+        else if (a == "--csv" && i + 1 < argc) csv = argv[++i];
+        else {
+            std::fprintf(stderr, "unknown argument %s\n", a.c_str());
+            return 2;
+        }
+    }
+    try {
+        const nmesh::PointCloud cloud = nmesh::read_points(argv[1]);
+        std::vector<double> seconds, rates;
+        nmesh::Statistics last;
+        for (int r = 0; r < runs; ++r) {
+            const nmesh::Result res = nmesh::reconstruct(cloud, params);
+            seconds.push_back(res.stats.seconds);
+            rates.push_back(double(res.stats.iterations) / res.stats.seconds);
+            last = res.stats;
+        }
+        nmesh::Callbacks profiled;
+        profiled.profile = true;
+        const nmesh::Statistics p = nmesh::reconstruct(cloud, params, profiled).stats;
+        const Summary t = summarize(seconds), it = summarize(rates);
+        const double total = p.seconds_winner + p.seconds_update + p.seconds_split + p.seconds_collapse + p.seconds_swap;
+        auto share = [&](double s) { return total > 0 ? 100.0 * s / total : 0.0; };
+        std::printf("cloud %s: %zu points -> %u vertices, edge swap %s, %d runs\n", argv[1], cloud.size(),
+                    params.target_vertices, params.edge_swap ? "on" : "off", runs);
+        std::printf("time      median %.3f s  min %.3f s  max %.3f s\n", t.median, t.min, t.max);
+        std::printf("rate      median %.2f M it/s  min %.2f  max %.2f  (%llu iterations)\n", it.median / 1e6,
+                    it.min / 1e6, it.max / 1e6, (unsigned long long)last.iterations);
+        std::printf("phases    winner search %.1f%%  move+smooth+counters %.1f%%  split %.1f%%  collapse %.1f%%  swap %.1f%%"
+                    "  (profiled run: %.3f s)\n",
+                    share(p.seconds_winner), share(p.seconds_update), share(p.seconds_split),
+                    share(p.seconds_collapse), share(p.seconds_swap), p.seconds);
+        if (!csv.empty()) {
+            std::FILE* f = std::fopen(csv.c_str(), "a");
+            if (!f) throw nmesh::IoError(csv + ": cannot open for appending");
+            std::fprintf(f, "%zu,%u,%d,%d,%.4f,%.4f,%.4f,%.0f,%.1f,%.1f,%.1f,%.1f,%.1f\n", cloud.size(),
+                         params.target_vertices, params.edge_swap ? 1 : 0, runs, t.median, t.min, t.max, it.median,
+                         share(p.seconds_winner), share(p.seconds_update), share(p.seconds_split),
+                         share(p.seconds_collapse), share(p.seconds_swap));
+            std::fclose(f);
+        }
+    } catch (const nmesh::Error& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

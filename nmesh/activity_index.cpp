@@ -1,0 +1,204 @@
+#include "nmesh/activity_index.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "nmesh/error.h"
+
+namespace nmesh {
+
+namespace {
+
+int highest_bit(std::uint64_t word) { return 63 - __builtin_clzll(word); }
+int lowest_bit(std::uint64_t word) { return __builtin_ctzll(word); }
+
+}  // namespace
+
+ActivityIndex::ActivityIndex(double alpha)
+    : alpha_(alpha), inv_alpha_(1.0 / alpha), bucket_heads_(kBuckets, kNone) {
+    if (!(alpha >= kMinAlpha && alpha <= 1.0))
+        throw ParameterError("ActivityIndex: alpha must be in [1e-100, 1], got " + std::to_string(alpha));
+}
+
+void ActivityIndex::reserve(std::size_t n) {
+    if (n > nodes_.size()) nodes_.resize(n);
+}
+
+double ActivityIndex::checked_counter(double tau, const char* what) {
+    if (!(tau >= 0.0 && tau <= kMaxCounter))
+        throw ParameterError(std::string("ActivityIndex::") + what + ": counter must be in [0, 1e150], got " +
+                             std::to_string(tau));
+    return tau;
+}
+
+// --- vertices ------------------------------------------------------------------------------
+
+void ActivityIndex::add(std::uint32_t v, double tau) {
+    assert(v != kNone && !contains(v));
+    checked_counter(tau, "add");
+    if (v >= nodes_.size()) nodes_.resize(std::max<std::size_t>(std::size_t(v) + 1, 2 * nodes_.size()));
+    Node& n = nodes_[v];
+    n.raw = tau * scale_;
+    n.epoch = epoch_;
+    n.last_signal = now_;
+    link_bucket(v, bucket_key(n));
+    // Newest end of the recency list: just before the head.
+    if (recent_head_ == kNone) {
+        recent_head_ = v;
+        n.recent_prev = n.recent_next = v;
+    } else {
+        const std::uint32_t tail = nodes_[recent_head_].recent_prev;
+        n.recent_prev = tail;
+        n.recent_next = recent_head_;
+        nodes_[tail].recent_next = v;
+        nodes_[recent_head_].recent_prev = v;
+    }
+    ++size_;
+}
+
+void ActivityIndex::remove(std::uint32_t v) {
+    assert(contains(v));
+    Node& n = nodes_[v];
+    unlink_bucket(v, bucket_key(n));
+    if (n.recent_next == v) {
+        recent_head_ = kNone;
+    } else {
+        nodes_[n.recent_prev].recent_next = n.recent_next;
+        nodes_[n.recent_next].recent_prev = n.recent_prev;
+        if (recent_head_ == v) recent_head_ = n.recent_next;
+    }
+    n = Node{};
+    --size_;
+}
+
+void ActivityIndex::set_counter(std::uint32_t v, double tau) {
+    assert(contains(v));
+    checked_counter(tau, "set_counter");
+    Node& n = nodes_[v];
+    const std::uint64_t old_key = bucket_key(n);
+    n.raw = tau * scale_;
+    n.epoch = epoch_;
+    const std::uint64_t new_key = bucket_key(n);
+    if (new_key != old_key) move_to_bucket(v, old_key, new_key);
+}
+
+// --- buckets -------------------------------------------------------------------------------
+//
+// A key k >= epoch_ * kEpochKeys is the bucket list bucket_heads_[k mod kBuckets], with bit
+// k - epoch_ * kEpochKeys in bucket_bits_. A smaller key means the vertex is retired: it is in no
+// list (its list links are stale and never followed), which spares the signal that revives it
+// the unlinking, and an epoch the relinking.
+
+void ActivityIndex::move_to_bucket(std::uint32_t v, std::uint64_t old_key, std::uint64_t new_key) {
+    unlink_bucket(v, old_key);
+    link_bucket(v, new_key);
+}
+
+void ActivityIndex::link_bucket(std::uint32_t v, std::uint64_t key) {
+    const std::uint64_t bit = key - epoch_ * kEpochKeys;  // written in this epoch: within the window
+    assert(key >= epoch_ * kEpochKeys && bit < kBuckets);
+    std::uint32_t& head = bucket_heads_[key % kBuckets];
+    Node& n = nodes_[v];
+    if (head == kNone) {
+        head = v;
+        n.bucket_prev = n.bucket_next = v;
+        bucket_bits_[bit / 64] |= std::uint64_t(1) << (bit % 64);
+        summary_bits_[bit / 4096] |= std::uint64_t(1) << (bit / 64 % 64);
+        return;
+    }
+    const std::uint32_t tail = nodes_[head].bucket_prev;
+    n.bucket_prev = tail;
+    n.bucket_next = head;
+    nodes_[tail].bucket_next = v;
+    nodes_[head].bucket_prev = v;
+}
+
+void ActivityIndex::unlink_bucket(std::uint32_t v, std::uint64_t key) {
+    const std::uint64_t base = epoch_ * kEpochKeys;
+    if (key < base) return;  // retired: in no list
+    std::uint32_t& head = bucket_heads_[key % kBuckets];
+    Node& n = nodes_[v];
+    if (n.bucket_next != v) {
+        nodes_[n.bucket_prev].bucket_next = n.bucket_next;
+        nodes_[n.bucket_next].bucket_prev = n.bucket_prev;
+        if (head == v) head = n.bucket_next;
+        return;
+    }
+    head = kNone;  // v was alone: the bucket empties
+    const std::uint64_t bit = key - base;
+    std::uint64_t& word = bucket_bits_[bit / 64];
+    word &= ~(std::uint64_t(1) << (bit % 64));
+    if (word == 0) summary_bits_[bit / 4096] &= ~(std::uint64_t(1) << (bit / 64 % 64));
+}
+
+// The scale is divided by 2^kScaleBits, so every stored key drops by kEpochKeys relative to the
+// window: the buckets of the lowest kEpochKeys keys (the first summary word) are dropped — their
+// vertices retire — and the bitmaps shift down by that much. O(1): at most 4096 buckets, found
+// through 64 bitmap words.
+void ActivityIndex::begin_epoch() {
+    scale_ = std::ldexp(scale_, -kScaleBits);
+    const std::uint64_t base = epoch_ * kEpochKeys;
+    constexpr std::size_t kRetiredWords = kEpochKeys / 64;
+    static_assert(kRetiredWords == 64, "an epoch retires exactly one summary word");
+    for (std::uint64_t words = summary_bits_[0]; words != 0; words &= words - 1) {
+        const std::size_t w = std::size_t(lowest_bit(words));
+        for (std::uint64_t bits = bucket_bits_[w]; bits != 0; bits &= bits - 1)
+            bucket_heads_[(base + w * 64 + std::uint64_t(lowest_bit(bits))) % kBuckets] = kNone;
+    }
+    for (std::size_t w = 0; w + kRetiredWords < kWords; ++w)
+        bucket_bits_[w] = bucket_bits_[w + kRetiredWords];
+    for (std::size_t w = kWords - kRetiredWords; w < kWords; ++w) bucket_bits_[w] = 0;
+    for (std::size_t s = 0; s + 1 < kSummaryWords; ++s) summary_bits_[s] = summary_bits_[s + 1];
+    summary_bits_[kSummaryWords - 1] = 0;
+    ++epoch_;
+}
+
+// --- queries -------------------------------------------------------------------------------
+
+std::uint32_t ActivityIndex::best_in_list(std::uint32_t head) const {
+    std::uint32_t best = head;
+    double best_raw = current_raw(nodes_[head]);
+    for (std::uint32_t v = nodes_[head].bucket_next; v != head; v = nodes_[v].bucket_next) {
+        const double raw = current_raw(nodes_[v]);
+        if (raw > best_raw || (raw == best_raw && v < best)) {
+            best = v;
+            best_raw = raw;
+        }
+    }
+    return best;
+}
+
+std::uint32_t ActivityIndex::most_active() const {
+    if (size_ == 0) return kNone;
+    for (std::size_t s = kSummaryWords; s-- > 0;) {
+        if (summary_bits_[s] == 0) continue;
+        const std::size_t w = s * 64 + std::size_t(highest_bit(summary_bits_[s]));
+        const std::uint64_t bit = w * 64 + std::uint64_t(highest_bit(bucket_bits_[w]));
+        return best_in_list(bucket_heads_[(epoch_ * kEpochKeys + bit) % kBuckets]);
+    }
+    // Every vertex is retired (all counters below 2.2e-308): compare them all, in id order.
+    std::uint32_t best = kNone;
+    double best_raw = -1.0;
+    for (std::uint32_t v = 0; v < nodes_.size(); ++v) {
+        if (!contains(v)) continue;
+        const double raw = current_raw(nodes_[v]);
+        if (raw > best_raw) {
+            best = v;
+            best_raw = raw;
+        }
+    }
+    return best;
+}
+
+void ActivityIndex::collect_inactive(std::uint64_t since, std::vector<std::uint32_t>& out) const {
+    if (recent_head_ == kNone) return;
+    std::uint32_t v = recent_head_;
+    do {
+        if (nodes_[v].last_signal >= since) return;
+        out.push_back(v);
+        v = nodes_[v].recent_next;
+    } while (v != recent_head_);
+}
+
+}  // namespace nmesh

@@ -1,0 +1,309 @@
+// nmesh — the command-line tool: reconstruct, eval, info.
+//
+// Exit status: 0 success, 1 runtime error (one line naming the file and the problem),
+// 2 usage error (one line and a hint), 130 interrupted.
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+#include "nmesh/cli/arguments.h"
+#include "nmesh/cli/progress_bar.h"
+#include "nmesh/error.h"
+#include "nmesh/mesh_io.h"
+#include "nmesh/metrics.h"
+#include "nmesh/point_reader.h"
+#include "nmesh/reconstruct.h"
+
+namespace nmesh::cli {
+namespace {
+
+constexpr const char* kMainUsage =
+    "usage: nmesh <command> [options]\n"
+    "\n"
+    "Reconstructs a closed triangle mesh from a point cloud with Neural Meshes ES.\n"
+    "\n"
+    "commands:\n"
+    "  reconstruct INPUT -o OUTPUT [options]   point cloud (PLY, XYZ, OBJ) to mesh (PLY, OBJ, OFF)\n"
+    "  eval POINTS MESH [--json]               quality of a mesh against its point cloud\n"
+    "  info FILE                               what a file holds\n"
+    "\n"
+    "Run 'nmesh <command> --help' for the options of a command.\n";
+
+constexpr const char* kReconstructUsage =
+    "usage: nmesh reconstruct INPUT -o OUTPUT [options]\n"
+    "\n"
+    "Learns a mesh of exactly --vertices vertices from the points of INPUT (.ply, .xyz/.txt/.pts,\n"
+    ".obj) and writes it to OUTPUT (.ply binary, .obj, .off). Defaults are Table 2 of the\n"
+    "Neural Meshes ES paper.\n"
+    "\n"
+    "options:\n"
+    "  -o, --output FILE      the mesh to write (required)\n"
+    "  --vertices N           target vertex count (default 10000; the paper's bunny: 30000)\n"
+    "  --alpha-w A            winner learning rate, eq. (2) (default 0.08)\n"
+    "  --alpha-n A            neighbourhood learning rate, eq. (3) (default 0.01)\n"
+    "  --alpha A              signal counter decay per iteration, eq. (7) (default 0.95)\n"
+    "  --cvs N                a vertex split every N iterations (default 100)\n"
+    "  --cec N                inactive vertices removed every N * n iterations (default 20)\n"
+    "  --no-edge-swap         basic Neural Meshes (no edge swap after collapses)\n"
+    "  --settle X             X * n iterations without topology changes at the end (default 0)\n"
+    "  --seed S               random seed; the same seed gives the same mesh (default 1)\n"
+    "  --snapshots N1,N2,...  also write the mesh when it reaches these sizes (OUTPUT_<N>v.ext)\n"
+    "  --stats FILE.json      write parameters, statistics and quality metrics as JSON\n"
+    "  --ascii                write PLY as ASCII instead of binary\n"
+    "  --save-on-interrupt    on Ctrl-C, write the mesh reached so far before exiting\n"
+    "  --quiet                no progress and no summary\n";
+
+constexpr const char* kEvalUsage =
+    "usage: nmesh eval POINTS MESH [--json]\n"
+    "\n"
+    "Measures MESH against the cloud POINTS: the paper's DM(X,T) (eq. 10-11), point-to-surface and\n"
+    "surface-to-point distances, the Hausdorff distance (absolute and relative to the cloud's\n"
+    "bounding-box diagonal), topology (closed, manifold, Euler characteristic, genus, components,\n"
+    "self-intersections) and triangle quality.\n"
+    "\n"
+    "options:\n"
+    "  --json                 print JSON instead of text\n";
+
+constexpr const char* kInfoUsage =
+    "usage: nmesh info FILE\n"
+    "\n"
+    "Prints the format, the element counts and the bounding box of a point or mesh file.\n";
+
+std::atomic<bool> g_interrupted{false};
+
+extern "C" void on_interrupt(int) { g_interrupted.store(true); }
+
+bool wants_help(int argc, char** argv) {
+    for (int i = 2; i < argc; ++i)
+        if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return true;
+    return false;
+}
+
+std::string snapshot_path(const std::string& output, std::uint32_t n) {
+    const auto slash = output.find_last_of('/');
+    const auto dot = output.find_last_of('.');
+    const bool has_ext = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+    const std::string stem = has_ext ? output.substr(0, dot) : output;
+    const std::string ext = has_ext ? output.substr(dot) : "";
+    return stem + "_" + std::to_string(n) + "v" + ext;
+}
+
+void print_summary(const Result& r, const std::string& output) {
+    const Statistics& s = r.stats;
+    std::fprintf(stderr,
+                 "nmesh: wrote %s: %zu vertices, %zu faces\n"
+                 "nmesh: %llu iterations, %llu splits, %llu collapses (%llu refused), "
+                 "%llu swaps kept of %llu tried, %.2f s learning (%.1f M it/s)\n",
+                 output.c_str(), r.mesh.positions.size(), r.mesh.triangles.size(),
+                 (unsigned long long)s.iterations, (unsigned long long)s.splits, (unsigned long long)s.collapses,
+                 (unsigned long long)s.collapses_refused, (unsigned long long)s.swaps_kept,
+                 (unsigned long long)s.swaps_tried, s.seconds, s.seconds > 0 ? s.iterations / s.seconds / 1e6 : 0.0);
+}
+
+void write_stats(const std::string& path, const std::string& input, const Parameters& p, const Result& r,
+                 const QualityReport& q) {
+    const Statistics& s = r.stats;
+    std::ostringstream metrics;
+    write_json(metrics, q);
+    write_file_atomically(path, [&](std::ostream& o) {
+        o.precision(10);
+        o << "{\n"
+          << "  \"input\": \"" << input << "\",\n"
+          << "  \"seed\": " << p.seed << ",\n"
+          << "  \"parameters\": {\"target_vertices\": " << p.target_vertices << ", \"alpha_w\": " << p.alpha_w
+          << ", \"alpha_n\": " << p.alpha_n << ", \"alpha\": " << p.alpha << ", \"cvs\": " << p.cvs
+          << ", \"cec\": " << p.cec << ", \"edge_swap\": " << (p.edge_swap ? "true" : "false")
+          << ", \"settle\": " << p.settle << "},\n"
+          << "  \"vertices\": " << r.mesh.positions.size() << ",\n"
+          << "  \"faces\": " << r.mesh.triangles.size() << ",\n"
+          << "  \"iterations\": " << s.iterations << ",\n"
+          << "  \"settle_iterations\": " << s.settle_iterations << ",\n"
+          << "  \"splits\": " << s.splits << ",\n"
+          << "  \"collapses\": " << s.collapses << ",\n"
+          << "  \"collapses_refused\": " << s.collapses_refused << ",\n"
+          << "  \"swaps_tried\": " << s.swaps_tried << ",\n"
+          << "  \"swaps_kept\": " << s.swaps_kept << ",\n"
+          << "  \"swaps_undone\": " << s.swaps_undone << ",\n"
+          << "  \"swaps_illegal\": " << s.swaps_illegal << ",\n"
+          << "  \"seconds\": " << s.seconds << ",\n"
+          << "  \"cancelled\": " << (r.cancelled ? "true" : "false") << ",\n"
+          << "  \"metrics\": " << metrics.str() << "\n"
+          << "}\n";
+    });
+}
+
+int run_reconstruct(int argc, char** argv) {
+    if (wants_help(argc, argv)) {
+        std::fputs(kReconstructUsage, stdout);
+        return 0;
+    }
+    const Arguments args(argc, argv, 2, {"--no-edge-swap", "--quiet", "--ascii", "--save-on-interrupt"},
+                         {"-o", "--output", "--vertices", "--alpha-w", "--alpha-n", "--alpha", "--cvs", "--cec",
+                          "--seed", "--snapshots", "--stats", "--settle"});
+    if (args.positional().size() != 1) throw UsageError("reconstruct takes one INPUT file");
+    const std::string input = args.positional()[0];
+    const std::string output = args.has("-o") ? args.text("-o") : args.text("--output");
+    if (output.empty()) throw UsageError("reconstruct needs an output file: -o OUTPUT");
+    if (output == input) throw UsageError("the output file must not be the input file");
+
+    Parameters p;
+    auto bounded_count = [&](const char* name, std::uint64_t fallback) {
+        const std::uint64_t v = args.count(name, fallback);
+        if (v > 0xffffffffull) throw UsageError(std::string("option ") + name + " is too large");
+        return std::uint32_t(v);
+    };
+    p.target_vertices = bounded_count("--vertices", p.target_vertices);
+    p.alpha_w = args.number("--alpha-w", p.alpha_w);
+    p.alpha_n = args.number("--alpha-n", p.alpha_n);
+    p.alpha = args.number("--alpha", p.alpha);
+    p.cvs = bounded_count("--cvs", p.cvs);
+    p.cec = bounded_count("--cec", p.cec);
+    p.settle = args.number("--settle", p.settle);
+    p.seed = args.count("--seed", p.seed);
+    p.edge_swap = !args.has("--no-edge-swap");
+    try {
+        p.validate();
+    } catch (const ParameterError& e) {
+        throw UsageError(e.what());
+    }
+    const bool quiet = args.has("--quiet");
+    MeshWriteOptions write_options;
+    write_options.ply_ascii = args.has("--ascii");
+
+    PointReadReport read_report;
+    const PointCloud cloud = read_points(input, &read_report);
+    if (!quiet) {
+        std::fprintf(stderr, "nmesh: read %s: %llu points (%s)\n", input.c_str(),
+                     (unsigned long long)read_report.points_read, read_report.format.c_str());
+        if (read_report.non_finite_dropped)
+            std::fprintf(stderr, "nmesh: warning: %s: dropped %llu points with NaN or infinite coordinates\n",
+                         input.c_str(), (unsigned long long)read_report.non_finite_dropped);
+    }
+
+    ProgressBar bar(ProgressBar::detect(quiet));
+    Callbacks cb;
+    cb.progress = [&](const Progress& pr) {
+        bar.update(pr);
+        return !g_interrupted.load();
+    };
+    for (std::uint64_t n : args.count_list("--snapshots")) cb.snapshot_vertices.push_back(std::uint32_t(n));
+    cb.on_snapshot = [&](std::uint32_t n, const IndexedMesh& m) {
+        write_mesh(snapshot_path(output, n), m, write_options);
+    };
+    std::signal(SIGINT, on_interrupt);
+    std::signal(SIGTERM, on_interrupt);
+    Result r;
+    try {
+        r = reconstruct(cloud, p, cb);
+    } catch (const InputError& e) {
+        throw IoError(input + ": " + e.what());
+    }
+    bar.finish();
+    if (r.cancelled) {
+        if (!args.has("--save-on-interrupt")) {
+            std::fprintf(stderr, "nmesh: interrupted after %llu iterations; nothing written\n",
+                         (unsigned long long)r.stats.iterations);
+            return 130;
+        }
+        write_mesh(output, r.mesh, write_options);
+        std::fprintf(stderr, "nmesh: interrupted; wrote the mesh reached so far (%zu vertices) to %s\n",
+                     r.mesh.positions.size(), output.c_str());
+        return 130;
+    }
+    write_mesh(output, r.mesh, write_options);
+    if (args.has("--stats")) {
+        const QualityReport q = evaluate(cloud.points, r.mesh);
+        write_stats(args.text("--stats"), input, p, r, q);
+        if (!quiet)
+            std::fprintf(stderr, "nmesh: DM(X,T) %.6g, Hausdorff %.3g%% of the diagonal; wrote %s\n", q.dm_x_t,
+                         100.0 * q.hausdorff_rel, args.text("--stats").c_str());
+    }
+    if (!quiet) print_summary(r, output);
+    return 0;
+}
+
+int run_eval(int argc, char** argv) {
+    if (wants_help(argc, argv)) {
+        std::fputs(kEvalUsage, stdout);
+        return 0;
+    }
+    const Arguments args(argc, argv, 2, {"--json"}, {});
+    if (args.positional().size() != 2) throw UsageError("eval takes two files: POINTS MESH");
+    const PointCloud cloud = read_points(args.positional()[0]);
+    const IndexedMesh mesh = read_mesh(args.positional()[1]);
+    if (cloud.empty()) throw IoError(args.positional()[0] + ": no points");
+    const QualityReport q = evaluate(cloud.points, mesh);
+    if (args.has("--json")) {
+        write_json(std::cout, q);
+        std::cout << "\n";
+    } else {
+        write_text(std::cout, q);
+    }
+    return 0;
+}
+
+int run_info(int argc, char** argv) {
+    if (wants_help(argc, argv)) {
+        std::fputs(kInfoUsage, stdout);
+        return 0;
+    }
+    const Arguments args(argc, argv, 2, {}, {});
+    if (args.positional().size() != 1) throw UsageError("info takes one FILE");
+    const std::string path = args.positional()[0];
+    const FileInfo info = inspect_file(path);
+    std::printf("file: %s\nformat: %s (%s)\nsize: %llu bytes\n", path.c_str(), info.format.c_str(),
+                info.encoding.c_str(), (unsigned long long)info.file_size);
+    for (const PlyElementInfo& e : info.elements) {
+        std::printf("element %s: %llu\n", e.name.c_str(), (unsigned long long)e.count);
+        for (const std::string& prop : e.properties) std::printf("  property %s\n", prop.c_str());
+    }
+    std::printf("points: %llu\n", (unsigned long long)info.points);
+    if (info.non_finite) std::printf("points with NaN or infinite coordinates: %llu\n", (unsigned long long)info.non_finite);
+    std::printf("faces: %llu\n", (unsigned long long)info.faces);
+    if (!info.bounds.empty()) {
+        std::printf("bounding box: [%g, %g, %g] to [%g, %g, %g]\ndiagonal: %g\n", info.bounds.min.x,
+                    info.bounds.min.y, info.bounds.min.z, info.bounds.max.x, info.bounds.max.y, info.bounds.max.z,
+                    info.bounds.diagonal());
+    }
+    return 0;
+}
+
+}  // namespace
+}  // namespace nmesh::cli
+
+int main(int argc, char** argv) {
+    using namespace nmesh::cli;
+    const std::string command = argc > 1 ? argv[1] : "";
+    const char* hint = "run 'nmesh --help' for usage";
+    try {
+        if (command == "reconstruct") {
+            hint = "run 'nmesh reconstruct --help' for usage";
+            return run_reconstruct(argc, argv);
+        }
+        if (command == "eval") {
+            hint = "run 'nmesh eval --help' for usage";
+            return run_eval(argc, argv);
+        }
+        if (command == "info") {
+            hint = "run 'nmesh info --help' for usage";
+            return run_info(argc, argv);
+        }
+        if (command == "--help" || command == "-h" || command == "help") {
+            std::fputs(kMainUsage, stdout);
+            return 0;
+        }
+        if (command.empty()) throw UsageError("no command given");
+        throw UsageError("unknown command '" + command + "'");
+    } catch (const UsageError& e) {
+        std::fprintf(stderr, "nmesh: %s (%s)\n", e.what(), hint);
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "nmesh: error: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,55 @@
+#include "nmesh/cli/progress_bar.h"
+
+#include <algorithm>
+#include <string>
+
+#include <unistd.h>
+
+namespace nmesh::cli {
+
+ProgressBar::Mode ProgressBar::detect(bool quiet) {
+    if (quiet) return Mode::quiet;
+    return isatty(fileno(stderr)) ? Mode::terminal : Mode::plain;
+}
+
+namespace {
+std::string clock_text(double seconds) {
+    const long s = long(seconds + 0.5);
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%ld:%02ld", s / 60, s % 60);
+    return buf;
+}
+}  // namespace
+
+void ProgressBar::update(const Progress& p) {
+    if (mode_ == Mode::quiet) return;
+    // Redraw a terminal at most 10 times a second; log a plain line every 5 seconds.
+    const double interval = mode_ == Mode::terminal ? 0.1 : 5.0;
+    if (last_print_ >= 0.0 && p.seconds - last_print_ < interval) return;
+    last_print_ = p.seconds;
+    const double fraction = p.target_vertices ? std::min(1.0, double(p.vertices) / p.target_vertices) : 0.0;
+    const double rate = p.seconds > 0 ? double(p.iterations) / p.seconds : 0.0;
+    const std::string left = fraction > 0.0 && !p.settling ? clock_text(p.seconds * (1.0 - fraction) / fraction) : "-";
+    if (mode_ == Mode::terminal) {
+        constexpr int kWidth = 30;
+        const int filled = int(fraction * kWidth);
+        std::string bar(std::size_t(filled), '#');
+        bar.append(std::size_t(kWidth - filled), '.');
+        std::fprintf(out_, "\r[%s] %u / %u vertices%s  %.1f M it/s  %s elapsed  %s left   ", bar.c_str(),
+                     p.vertices, p.target_vertices, p.settling ? " (settling)" : "", rate / 1e6,
+                     clock_text(p.seconds).c_str(), left.c_str());
+        drawn_ = true;
+    } else {
+        std::fprintf(out_, "nmesh: %u / %u vertices%s, %.1f M it/s, %s elapsed, %s left\n", p.vertices,
+                     p.target_vertices, p.settling ? " (settling)" : "", rate / 1e6, clock_text(p.seconds).c_str(),
+                     left.c_str());
+    }
+    std::fflush(out_);
+}
+
+void ProgressBar::finish() {
+    if (drawn_) std::fprintf(out_, "\n");
+    drawn_ = false;
+}
+
+}  // namespace nmesh::cli

@@ -1,0 +1,31 @@
+// nmesh/cli/progress_bar.h — progress of a reconstruction on stderr.
+//
+// On a terminal: one line redrawn in place (a bar, vertices reached / target, iterations per
+// second, elapsed and estimated time left). Otherwise (a log file, CI): a plain line every few
+// seconds. Quiet: nothing.
+#pragma once
+
+#include <cstdio>
+
+#include "nmesh/reconstruct.h"
+
+namespace nmesh::cli {
+
+class ProgressBar {
+public:
+    enum class Mode { quiet, terminal, plain };
+    explicit ProgressBar(Mode mode, std::FILE* out = stderr) : mode_(mode), out_(out) {}
+    // Picks terminal or plain from whether stderr is a terminal.
+    static Mode detect(bool quiet);
+
+    void update(const Progress& p);
+    void finish();  // ends the terminal line
+
+private:
+    Mode mode_;
+    std::FILE* out_;
+    double last_print_ = -1.0;
+    bool drawn_ = false;
+};
+
+}  // namespace nmesh::cli

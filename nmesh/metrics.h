@@ -1,0 +1,110 @@
+// nmesh/metrics.h — quality metrics of a reconstruction (an IndexedMesh) against its point cloud.
+//
+// Distances are in the units of the cloud. Each distance is also reported relative to the cloud's
+// bounding-box diagonal (the *_rel fields), so that results on clouds of different scale compare.
+//
+//   DM(X,T)            the paper's measure, eq. (10)-(11): the mean over the cloud points of the
+//                      distance to the nearest triangle centroid.
+//   point-to-surface   each cloud point to the nearest point of the surface (exact point-triangle
+//                      distance): mean, RMS, max.
+//   surface-to-cloud   points sampled uniformly by area on the surface, each to the nearest cloud
+//                      point: mean, max. An estimate: the max is a lower bound of the true one.
+//   Hausdorff          max(point-to-surface max, surface-to-cloud max).
+//   topology           closed, manifold, Euler characteristic, genus, components,
+//                      self-intersections, degenerate triangles.
+//   triangle quality   the smallest angle of each triangle: min, mean, share under 10 degrees.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <iosfwd>
+#include <vector>
+
+#include "nmesh/indexed_mesh.h"
+#include "nmesh/point_grid.h"
+#include "nmesh/vec3.h"
+
+namespace nmesh {
+
+struct EvalOptions {
+    // Surface samples for the surface-to-cloud distance. 200,000 spaces them about 0.2% of the
+    // diagonal apart on the bunny (0.5 mm on its 0.057 m^2), finer than its scan spacing.
+    std::size_t surface_samples = 200000;
+    // Seed of the sampling; fixed so that two evaluations of the same mesh agree exactly.
+    std::uint64_t seed = 1;
+};
+
+struct QualityReport {
+    // Sizes.
+    std::size_t vertices = 0;  // positions in the mesh, referenced or not
+    std::size_t faces = 0;
+    double bbox_diagonal = 0.0;  // of the cloud; the unit of the *_rel fields
+
+    // Distances (cloud units) and the same relative to bbox_diagonal (NaN when it is 0).
+    double dm_x_t = 0.0, dm_x_t_rel = 0.0;
+    double p2s_mean = 0.0, p2s_mean_rel = 0.0;
+    double p2s_rms = 0.0, p2s_rms_rel = 0.0;
+    double p2s_max = 0.0, p2s_max_rel = 0.0;
+    double s2p_mean = 0.0, s2p_mean_rel = 0.0;
+    double s2p_max = 0.0, s2p_max_rel = 0.0;
+    double hausdorff = 0.0, hausdorff_rel = 0.0;
+
+    // Topology, over the vertices used by at least one triangle.
+    bool closed = false;    // every edge lies in exactly two triangles
+    bool manifold = false;  // every edge in one or two triangles, consistently oriented, and the
+                            // triangles around every vertex form one single fan
+    long long euler = 0;    // V - E + F
+    int genus = -1;         // sum over components of (2 - chi) / 2; -1 unless closed and manifold
+    std::size_t components = 0;            // connected through shared vertices
+    std::size_t isolated_vertices = 0;     // positions used by no triangle
+    std::size_t degenerate_triangles = 0;  // a repeated vertex or zero area
+    std::size_t self_intersections = 0;    // intersecting pairs of non-degenerate triangles
+                                           // sharing no vertex
+
+    // Triangle quality, from the smallest angle of each triangle (0 for degenerate ones).
+    double min_angle_min_deg = 0.0;
+    double min_angle_mean_deg = 0.0;
+    double share_under_10deg = 0.0;  // fraction in [0, 1]
+};
+
+// Computes every metric. Cost for n points, F triangles and S samples: O(n log F + S + F log F),
+// plus the pairs of triangles whose boxes overlap — about 0.3 s for the bunny scan (36k points)
+// against its 69k-triangle mesh.
+// Throws InputError if `points` is empty, if a point or a mesh vertex has a NaN or infinite
+// coordinate, if the mesh has no triangle, or if a triangle refers to a vertex that does not
+// exist; ParameterError if options.surface_samples is 0.
+QualityReport evaluate(const std::vector<Vec3>& points, const IndexedMesh& mesh,
+                       const EvalOptions& options = {});
+
+// The report as one flat JSON object, keys named as the fields above (genus and undefined
+// relative values are written as null). No trailing newline.
+void write_json(std::ostream& out, const QualityReport& report);
+// The report as aligned "name: value" lines, for people.
+void write_text(std::ostream& out, const QualityReport& report);
+
+// DM(X,T), eq. (10)-(11) of the paper: the mean over the points x of the distance from x to the
+// nearest triangle centroid (a + b + c) / 3, centroids computed in float. The paper writes the
+// normalisation as 1 / size(T) but sums over the cloud points and calls the measure "the mean
+// error between the set of points X and the centroids"; this divides by the number of points.
+// O(n + F) expected. Throws InputError as evaluate() does.
+double dm_cloud_to_centroids(const std::vector<Vec3>& points, const IndexedMesh& mesh);
+
+// Distance from each mesh position to the nearest point of `cloud` (for colouring an error map).
+// O(V) queries.
+std::vector<float> vertex_distances_to_cloud(const PointGrid& cloud, const IndexedMesh& mesh);
+
+// Squared distance from p to the triangle abc (its closest point may lie inside, on an edge or at
+// a vertex), computed in double. Degenerate triangles are handled (distance to a segment or point).
+double point_triangle_squared_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
+// Whether the closed triangles abc and def share at least one point (touching counts), coplanar
+// pairs included. Decided from orientation signs computed in double from the float coordinates,
+// so configurations within rounding of touching may go either way. Both triangles must be
+// non-degenerate.
+bool triangles_intersect(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& e,
+                         const Vec3& f);
+
+// The smallest interior angle of the triangle abc, in degrees (0 for a degenerate triangle).
+double min_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c);
+
+}  // namespace nmesh

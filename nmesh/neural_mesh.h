@@ -1,0 +1,83 @@
+// nmesh/neural_mesh.h — the learning engine: the Neural Meshes algorithm (steps 1-9 of section 3
+// of the Neural Meshes ES paper) and the edge swap of section 4, on the parts built for it:
+// the half-edge Mesh, the VertexGrid (winner search), the ActivityIndex (signal counters) and,
+// for the edge swap, a PointGrid over the cloud.
+//
+// Most callers want reconstruct() (nmesh/reconstruct.h), which normalises the cloud, runs this
+// engine and maps the mesh back. The engine is public so tests can drive it step by step.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "nmesh/activity_index.h"
+#include "nmesh/mesh.h"
+#include "nmesh/point_grid.h"
+#include "nmesh/random.h"
+#include "nmesh/reconstruct.h"
+#include "nmesh/vertex_grid.h"
+
+namespace nmesh {
+
+class NeuralMesh {
+public:
+    // `points` must already be normalised (reconstruct() centres them and scales them into a
+    // box of diagonal at most 1) and must outlive the engine. `params` must be valid.
+    NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bounds, const Parameters& params);
+
+    // One iteration of steps 1-6, followed by step 7 or 8 when it is due.
+    void iterate();
+    // Steps 1-6 only (the settling phase).
+    void adapt();
+    // Step 7: a vertex split of the most active vertex.
+    void split_most_active();
+    // Step 8: every inactive vertex removed by an edge collapse (and, with edge_swap, step 1-3 of
+    // the edge swap around each collapse's remaining vertex).
+    void remove_inactive();
+    // Section 4: the edge swap around vertex v.
+    void swap_around(Vertex v);
+    // Time each phase into Statistics::seconds_* from now on (costs a clock read per phase).
+    void set_profiling(bool on) { profiling_ = on; }
+
+    const Mesh& mesh() const { return mesh_; }
+    const VertexGrid& grid() const { return grid_; }
+    const ActivityIndex& activity() const { return activity_; }
+    const Statistics& stats() const { return stats_; }
+    Statistics& stats() { return stats_; }
+    std::uint64_t iteration() const { return iteration_; }
+
+    // Checks that the grid and the activity index hold exactly the mesh's alive vertices at
+    // their positions; returns an empty string or the first mismatch. O(n); for tests.
+    std::string check_consistency() const;
+
+private:
+    Vertex sample_and_find_winner(Vec3& x);
+    void move_winner(Vertex w, const Vec3& x);
+    void smooth_neighbourhood(Vertex w);
+    float face_deviation(Face f) const;
+    float edge_deviation(Halfedge h) const;
+    void set_position(Vertex v, const Vec3& p);
+    void adapt_profiled();
+
+    const std::vector<Vec3>& points_;
+    Parameters params_;
+    Mesh mesh_;
+    VertexGrid grid_;
+    ActivityIndex activity_;
+    std::unique_ptr<PointGrid> cloud_index_;  // eq. (9); built only for the edge swap
+    Random rng_;
+    Statistics stats_;
+    bool profiling_ = false;
+    std::uint64_t iteration_ = 0;
+    std::uint64_t next_removal_ = 0;  // iteration of the next step 8
+    std::uint64_t period_start_ = 0;  // activity clock at the start of the current step-8 period
+    // Scratch space reused across iterations (no allocation in steady state).
+    std::vector<Vertex> ring_;
+    std::vector<Vec3> new_positions_;
+    std::vector<std::uint32_t> inactive_;
+    std::vector<Halfedge> swap_ring_;
+    std::vector<float> swap_dm_;
+};
+
+}  // namespace nmesh

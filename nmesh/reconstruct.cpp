@@ -1,0 +1,151 @@
+#include "nmesh/reconstruct.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "nmesh/error.h"
+#include "nmesh/neural_mesh.h"
+
+namespace nmesh {
+
+void Parameters::validate() const {
+    auto bad = [](const std::string& name, const std::string& why) {
+        throw ParameterError("invalid parameter " + name + ": " + why);
+    };
+    if (target_vertices < 4) bad("target_vertices", "must be at least 4 (a tetrahedron), got " + std::to_string(target_vertices));
+    if (!(alpha_w > 0.0 && alpha_w <= 1.0)) bad("alpha_w", "must be in (0, 1], got " + std::to_string(alpha_w));
+    if (!(alpha_n >= 0.0 && alpha_n <= 1.0)) bad("alpha_n", "must be in [0, 1], got " + std::to_string(alpha_n));
+    if (!(alpha > 0.0 && alpha < 1.0)) bad("alpha", "must be in (0, 1), got " + std::to_string(alpha));
+    if (cvs < 1) bad("cvs", "must be at least 1");
+    if (cec < 1) bad("cec", "must be at least 1");
+    if (!(settle >= 0.0 && settle <= 1e6)) bad("settle", "must be in [0, 1e6], got " + std::to_string(settle));
+}
+
+namespace {
+
+// The cloud, centred on its bounding box and scaled by a power of two so that its diagonal is
+// at most 1. A power-of-two scale is exact in floating point: a cloud and the same cloud scaled
+// by 2^k normalise to the same bits, and so give the same mesh up to that scale.
+struct Normalization {
+    Vec3 center;
+    float scale = 1.0f;  // normalised = (p - center) * scale
+    std::vector<Vec3> points;
+    BoundingBox bounds;  // of the normalised points
+
+    explicit Normalization(const PointCloud& cloud) {
+        const BoundingBox box = cloud.bounds();
+        center = box.center();
+        const double diag = box.diagonal();
+        scale = diag > 0.0 ? float(std::ldexp(1.0, -std::ilogb(diag) - 1)) : 1.0f;
+        points.resize(cloud.size());
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            points[i] = (cloud.points[i] - center) * scale;
+            bounds.extend(points[i]);
+        }
+    }
+    IndexedMesh to_input(IndexedMesh m) const {
+        const float inv = 1.0f / scale;
+        for (Vec3& p : m.positions) p = p * inv + center;
+        return m;
+    }
+};
+
+// Throws InputError unless the cloud has four affinely independent points (a tetrahedron's
+// worth); a flat but not collinear cloud is accepted (the mesh is then a flattened closed
+// surface). O(n).
+void require_reconstructible(const std::vector<Vec3>& pts) {
+    for (const Vec3& p : pts)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            throw InputError("the point cloud holds a non-finite coordinate");
+    if (pts.size() < 4) throw InputError("the point cloud has " + std::to_string(pts.size()) + " points; at least 4 distinct points are needed");
+    // Farthest point from the first, then the point farthest from that line.
+    const Vec3 a = pts[0];
+    Vec3 b = a;
+    float best = 0.0f;
+    for (const Vec3& p : pts)
+        if (squared_distance(a, p) > best) best = squared_distance(a, p), b = p;
+    if (best == 0.0f) throw InputError("all points of the cloud are identical");
+    const Vec3 dir = b - a;
+    best = 0.0f;
+    for (const Vec3& p : pts) {
+        const float d = squared_norm(cross(p - a, dir));
+        if (d > best) best = d;
+    }
+    if (best <= 1e-12f * squared_norm(dir) * squared_norm(dir))
+        throw InputError("all points of the cloud lie on one line");
+    // At least four distinct points.
+    Vec3 distinct[4] = {a};
+    int count = 1;
+    for (const Vec3& p : pts) {
+        bool seen = false;
+        for (int i = 0; i < count; ++i) seen = seen || distinct[i] == p;
+        if (!seen) distinct[count++] = p;
+        if (count == 4) return;
+    }
+    throw InputError("the point cloud has only " + std::to_string(count) + " distinct points; at least 4 are needed");
+}
+
+}  // namespace
+
+Result reconstruct(const PointCloud& cloud, const Parameters& params, const Callbacks& callbacks) {
+    params.validate();
+    require_reconstructible(cloud.points);
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+
+    const Normalization norm(cloud);
+    NeuralMesh engine(norm.points, norm.bounds, params);
+    engine.set_profiling(callbacks.profile);
+
+    std::vector<std::uint32_t> snapshots = callbacks.snapshot_vertices;
+    std::sort(snapshots.begin(), snapshots.end());
+    std::size_t next_snapshot = 0;
+
+    Result result;
+    Progress progress;
+    progress.target_vertices = params.target_vertices;
+    auto report = [&](bool settling) {
+        if (!callbacks.progress) return true;
+        progress.vertices = engine.mesh().n_vertices();
+        progress.iterations = engine.iteration();
+        progress.seconds = elapsed();
+        progress.settling = settling;
+        return callbacks.progress(progress);
+    };
+    constexpr std::uint64_t kReportMask = (1u << 16) - 1;  // a callback every 65,536 iterations
+
+    // Step 9: repeat until the target size is reached.
+    while (engine.mesh().n_vertices() < params.target_vertices) {
+        engine.iterate();
+        while (next_snapshot < snapshots.size() && engine.mesh().n_vertices() >= snapshots[next_snapshot]) {
+            if (callbacks.on_snapshot) callbacks.on_snapshot(snapshots[next_snapshot], norm.to_input(engine.mesh().to_indexed()));
+            ++next_snapshot;
+        }
+        if ((engine.iteration() & kReportMask) == 0 && !report(false)) {
+            result.cancelled = true;
+            break;
+        }
+    }
+    // Optional settling phase: steps 1-6 only.
+    if (!result.cancelled) {
+        const std::uint64_t settle = std::uint64_t(params.settle * engine.mesh().n_vertices());
+        for (std::uint64_t i = 0; i < settle; ++i) {
+            engine.adapt();
+            ++engine.stats().settle_iterations;
+            if ((engine.iteration() & kReportMask) == 0 && !report(true)) {
+                result.cancelled = true;
+                break;
+            }
+        }
+    }
+    result.mesh = norm.to_input(engine.mesh().to_indexed());
+    result.stats = engine.stats();
+    result.stats.seconds = elapsed();
+    if (callbacks.progress && !result.cancelled) report(params.settle > 0.0);
+    return result;
+}
+
+}  // namespace nmesh

@@ -1,0 +1,94 @@
+// nmesh/reconstruct.h — the library's entry point: point cloud in, closed triangle mesh out.
+//
+//     nmesh::PointCloud cloud = nmesh::read_points("bunny.ply");
+//     nmesh::Parameters params;              // Table 2 of the paper
+//     params.target_vertices = 30000;
+//     nmesh::Result r = nmesh::reconstruct(cloud, params);
+//     nmesh::write_mesh("bunny_mesh.ply", r.mesh);
+//
+// The algorithm is Neural Meshes (Ivrissimtzis, Jeong and Seidel 2003) with the edge swap of
+// Neural Meshes ES (Mari et al.); see nmesh/neural_mesh.cpp for the steps and README.md for the
+// choices made where the papers leave room.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "nmesh/indexed_mesh.h"
+#include "nmesh/point_cloud.h"
+
+namespace nmesh {
+
+// The learning parameters. Defaults are Table 2 of the Neural Meshes ES paper (its settings for
+// the 30,000-vertex bunny), except the target size, which a caller should choose.
+struct Parameters {
+    std::uint32_t target_vertices = 10000;  // step 9: stop at this many vertices (>= 4)
+    double alpha_w = 0.08;   // eq. (2): learning rate of the winner vertex, in (0, 1]
+    double alpha_n = 0.01;   // eq. (3): learning rate of the winner's neighbours, in [0, 1]
+    double alpha = 0.95;     // eq. (7): signal counter decay per iteration, in (0, 1)
+    std::uint32_t cvs = 100; // step 7: a vertex split every Cvs iterations (>= 1)
+    std::uint32_t cec = 20;  // step 8: inactive vertices removed every Cec * n iterations (>= 1)
+    bool edge_swap = true;   // Neural Meshes ES; false gives the basic Neural Meshes algorithm
+    std::uint64_t seed = 1;  // the same seed and input give a bit-identical mesh
+    // Iterations of steps 1-6 (no splits or collapses) run after the target size is reached, so
+    // the last vertices settle onto the surface; in units of the final vertex count n
+    // (settle_iterations = settle * n). 0 disables the phase.
+    double settle = 0.0;
+
+    // Throws ParameterError naming the first parameter out of range.
+    void validate() const;
+};
+
+// Counts and timings of one run.
+struct Statistics {
+    std::uint64_t iterations = 0;        // steps 1-6 executed (learning + settling)
+    std::uint64_t settle_iterations = 0; // of which in the settling phase
+    std::uint64_t splits = 0;            // step 7
+    std::uint64_t collapses = 0;         // step 8
+    std::uint64_t collapses_refused = 0; // inactive vertices with no legal collapse (kept)
+    std::uint64_t removal_passes = 0;    // step 8 passes
+    std::uint64_t swaps_tried = 0;       // edge swap: flips attempted (legal)
+    std::uint64_t swaps_kept = 0;        //   kept: the new edge deviates less
+    std::uint64_t swaps_undone = 0;      //   undone: it did not
+    std::uint64_t swaps_illegal = 0;     //   the worst edge could not be flipped
+    double seconds = 0.0;                // learning time, wall clock
+    // Time split by phase, filled only when Callbacks::profile is set (timing costs time).
+    double seconds_winner = 0.0, seconds_update = 0.0, seconds_split = 0.0,
+           seconds_collapse = 0.0, seconds_swap = 0.0;
+};
+
+// Reported to the progress callback about every 2^16 iterations.
+struct Progress {
+    std::uint32_t vertices = 0;
+    std::uint32_t target_vertices = 0;
+    std::uint64_t iterations = 0;
+    double seconds = 0.0;
+    bool settling = false;
+};
+
+struct Callbacks {
+    // Return false to stop: reconstruct() then returns the mesh reached so far, with
+    // Result::cancelled set.
+    std::function<bool(const Progress&)> progress;
+    // Vertex counts at which a copy of the mesh is handed to on_snapshot (in input coordinates).
+    std::vector<std::uint32_t> snapshot_vertices;
+    std::function<void(std::uint32_t vertices, const IndexedMesh& mesh)> on_snapshot;
+    // Measure the time of each phase (Statistics::seconds_*); slows learning a little.
+    bool profile = false;
+};
+
+struct Result {
+    IndexedMesh mesh;  // a closed genus-0 2-manifold, in the input's coordinates
+    Statistics stats;
+    bool cancelled = false;
+};
+
+// Reconstructs a closed triangle mesh with params.target_vertices vertices from the cloud.
+// Throws ParameterError for invalid parameters and InputError for a cloud that cannot be
+// reconstructed (fewer than 4 distinct points, or all points on one line).
+// The cloud is normalised internally (centre and a power-of-two scale), so the result does not
+// depend on the cloud's units.
+Result reconstruct(const PointCloud& cloud, const Parameters& params = {}, const Callbacks& callbacks = {});
+
+}  // namespace nmesh

@@ -1,0 +1,88 @@
+# End-to-end tests of the nmesh command-line tool, run by ctest as
+#   cmake -DNMESH=<path to nmesh> -DDATA=<bunny.ply> -DWORK=<scratch dir> -P cli_tests.cmake
+# Each step runs the tool and checks its exit status and what it prints.
+cmake_minimum_required(VERSION 3.16)
+
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
+set(failures 0)
+set(passes 0)
+
+# expect(NAME STATUS REGEX COMMAND...): run COMMAND; its exit status must be STATUS and its
+# stdout+stderr must match REGEX ("" for anything).
+function(expect name status regex)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  set(text "${out}${err}")
+  if(NOT rc STREQUAL "${status}")
+    message(SEND_ERROR "${name}: exit status ${rc}, expected ${status}\n${text}")
+    math(EXPR failures "${failures} + 1")
+  elseif(NOT regex STREQUAL "" AND NOT text MATCHES "${regex}")
+    message(SEND_ERROR "${name}: output does not match '${regex}':\n${text}")
+    math(EXPR failures "${failures} + 1")
+  else()
+    math(EXPR passes "${passes} + 1")
+  endif()
+  set(failures ${failures} PARENT_SCOPE)
+  set(passes ${passes} PARENT_SCOPE)
+endfunction()
+
+# Help and usage errors.
+expect(help 0 "reconstruct INPUT" ${NMESH} --help)
+expect(reconstruct_help 0 "--vertices N" ${NMESH} reconstruct --help)
+expect(eval_help 0 "DM\\(X,T\\)" ${NMESH} eval --help)
+expect(info_help 0 "usage: nmesh info" ${NMESH} info --help)
+expect(no_command 2 "no command given" ${NMESH})
+expect(unknown_command 2 "unknown command 'frobnicate'" ${NMESH} frobnicate)
+expect(no_output 2 "needs an output file" ${NMESH} reconstruct ${DATA})
+expect(unknown_option 2 "unknown option --bogus" ${NMESH} reconstruct ${DATA} -o ${WORK}/x.ply --bogus)
+expect(bad_number 2 "--alpha-w needs a number" ${NMESH} reconstruct ${DATA} -o ${WORK}/x.ply --alpha-w fast)
+expect(bad_alpha 2 "invalid parameter alpha:" ${NMESH} reconstruct ${DATA} -o ${WORK}/x.ply --alpha 1.5)
+expect(bad_cvs 2 "invalid parameter cvs" ${NMESH} reconstruct ${DATA} -o ${WORK}/x.ply --cvs 0)
+expect(small_target 2 "invalid parameter target_vertices" ${NMESH} reconstruct ${DATA} -o ${WORK}/x.ply --vertices 3)
+expect(output_is_input 2 "must not be the input" ${NMESH} reconstruct ${DATA} -o ${DATA})
+
+# Runtime errors name the file.
+expect(missing_input 1 "nosuch.ply" ${NMESH} reconstruct ${WORK}/nosuch.ply -o ${WORK}/x.ply)
+expect(missing_dir 1 "missing/out.ply" ${NMESH} reconstruct ${DATA} -o ${WORK}/missing/out.ply --vertices 50 --quiet)
+if(EXISTS ${WORK}/x.ply)
+  message(SEND_ERROR "a failed run left ${WORK}/x.ply behind")
+  math(EXPR failures "${failures} + 1")
+endif()
+
+# Reconstruct, then evaluate the result.
+expect(reconstruct 0 "wrote .*mesh.ply: 1000 vertices, 1996 faces"
+  ${NMESH} reconstruct ${DATA} -o ${WORK}/mesh.ply --vertices 1000 --stats ${WORK}/stats.json --snapshots 100,500)
+foreach(f mesh.ply mesh_100v.ply mesh_500v.ply stats.json)
+  if(NOT EXISTS ${WORK}/${f})
+    message(SEND_ERROR "reconstruct did not write ${f}")
+    math(EXPR failures "${failures} + 1")
+  endif()
+endforeach()
+file(READ ${WORK}/stats.json stats)
+foreach(key vertices faces iterations splits collapses swaps_kept seconds seed dm_x_t hausdorff_rel)
+  if(NOT stats MATCHES "\"${key}\": ")
+    message(SEND_ERROR "stats.json has no key ${key}")
+    math(EXPR failures "${failures} + 1")
+  endif()
+endforeach()
+expect(quiet 0 "^$" ${NMESH} reconstruct ${DATA} -o ${WORK}/quiet.obj --vertices 200 --quiet)
+expect(eval_json 0 "\"closed\": true.*\"genus\": 0" ${NMESH} eval ${DATA} ${WORK}/mesh.ply --json)
+expect(eval_text 0 "dm_x_t" ${NMESH} eval ${DATA} ${WORK}/quiet.obj)
+expect(info 0 "element vertex: 35947" ${NMESH} info ${DATA})
+expect(info_mesh 0 "faces: 1996" ${NMESH} info ${WORK}/mesh.ply)
+expect(no_edge_swap 0 "0 swaps kept of 0 tried"
+  ${NMESH} reconstruct ${DATA} -o ${WORK}/nm.off --vertices 300 --no-edge-swap)
+
+# The same seed writes the same bytes.
+execute_process(COMMAND ${NMESH} reconstruct ${DATA} -o ${WORK}/again.ply --vertices 1000 --quiet)
+file(SHA256 ${WORK}/mesh.ply first)
+file(SHA256 ${WORK}/again.ply second)
+if(NOT first STREQUAL second)
+  message(SEND_ERROR "two runs with the same seed wrote different files")
+  math(EXPR failures "${failures} + 1")
+endif()
+
+message("cli: ${passes} passed, ${failures} failed")
+if(failures GREATER 0)
+  message(FATAL_ERROR "${failures} CLI checks failed")
+endif()

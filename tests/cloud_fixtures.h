@@ -1,0 +1,47 @@
+// Point clouds for the tests: seeded synthetic samples and the real scans.
+#pragma once
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "nmesh/point_cloud.h"
+#include "nmesh/random.h"
+
+namespace nmesh::test {
+
+// n points uniformly distributed on the sphere (center, radius).
+inline PointCloud sphere_cloud(std::size_t n, float radius = 1.0f, Vec3 center = {}, std::uint64_t seed = 7) {
+    Random rng(seed);
+    PointCloud c;
+    c.points.reserve(n);
+    while (c.points.size() < n) {
+        const Vec3 p{float(rng.uniform() * 2 - 1), float(rng.uniform() * 2 - 1), float(rng.uniform() * 2 - 1)};
+        const float r2 = squared_norm(p);
+        if (r2 > 1.0f || r2 < 1e-6f) continue;
+        c.points.push_back(center + p * (radius / std::sqrt(r2)));
+    }
+    return c;
+}
+
+// The bunny from the shared scans (binary little-endian PLY, float x y z, no other property).
+// Read here without the library's readers so that these tests do not depend on them.
+inline PointCloud shared_bunny() {
+    const std::string path = std::string(NMESH_SHARED_DATA_DIR) + "/bunny.ply";
+    PointCloud c;
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return c;
+    char line[256];
+    std::size_t n = 0;
+    while (std::fgets(line, sizeof line, f)) {
+        std::sscanf(line, "element vertex %zu", &n);
+        if (std::string(line) == "end_header\n") break;
+    }
+    c.points.resize(n);
+    if (std::fread(c.points.data(), sizeof(Vec3), n, f) != n) c.points.clear();
+    std::fclose(f);
+    return c;
+}
+
+}  // namespace nmesh::test

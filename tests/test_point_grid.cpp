@@ -1,0 +1,259 @@
+// Tests of PointGrid: every answer is compared with a brute-force scan over the same cloud, on
+// clouds chosen to stress the grid (surface, volume, clusters, duplicates, flat and tiny clouds),
+// for queries near and far from the data.
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "nmesh/error.h"
+#include "nmesh/point_grid.h"
+
+using nmesh::NearestPoint;
+using nmesh::PointGrid;
+using nmesh::Vec3;
+
+namespace {
+
+// The reference answer: a scan of every point, ties to the smaller index.
+NearestPoint brute_force_nearest(const std::vector<Vec3>& points, const Vec3& q) {
+    NearestPoint best{0, std::numeric_limits<float>::infinity()};
+    for (std::uint32_t i = 0; i < points.size(); ++i) {
+        const float d = nmesh::squared_distance(q, points[i]);
+        if (d < best.squared_distance) best = {i, d};
+    }
+    return best;
+}
+
+// Checks every query against the brute force; returns the number of mismatches.
+int count_mismatches(const PointGrid& grid, const std::vector<Vec3>& points,
+                     const std::vector<Vec3>& queries) {
+    int bad = 0;
+    for (const Vec3& q : queries) {
+        const NearestPoint want = brute_force_nearest(points, q);
+        const NearestPoint got = grid.find_nearest(q);
+        if (got.index != want.index || got.squared_distance != want.squared_distance) {
+            if (bad < 5)
+                MESSAGE("query (" << q.x << ", " << q.y << ", " << q.z << "): got " << got.index
+                                  << " at " << got.squared_distance << ", want " << want.index
+                                  << " at " << want.squared_distance);
+            ++bad;
+        }
+        if (grid.nearest(q) != got.index || grid.nearest_squared_distance(q) != got.squared_distance)
+            ++bad;
+    }
+    return bad;
+}
+
+float uniform(std::mt19937& rng, float lo, float hi) {
+    return std::uniform_real_distribution<float>(lo, hi)(rng);
+}
+
+Vec3 random_in_box(std::mt19937& rng, const Vec3& lo, const Vec3& hi) {
+    return {uniform(rng, lo.x, hi.x), uniform(rng, lo.y, hi.y), uniform(rng, lo.z, hi.z)};
+}
+
+Vec3 random_unit_vector(std::mt19937& rng) {
+    std::normal_distribution<float> g(0.0f, 1.0f);
+    for (;;) {
+        const Vec3 v{g(rng), g(rng), g(rng)};
+        if (nmesh::norm(v) > 1e-3f) return nmesh::normalized(v);
+    }
+}
+
+// Queries of every kind for a cloud: on the points, jittered near them, inside the bounding box,
+// and far outside it (10 and 1000 diagonals away, and at 1e6 units).
+std::vector<Vec3> mixed_queries(const std::vector<Vec3>& points, std::mt19937& rng, int count) {
+    Vec3 lo = points[0], hi = points[0];
+    for (const Vec3& p : points) {
+        lo = nmesh::min(lo, p);
+        hi = nmesh::max(hi, p);
+    }
+    const float diag = std::max(nmesh::distance(lo, hi), 1e-6f);
+    const Vec3 mid = (lo + hi) * 0.5f;
+    std::vector<Vec3> q;
+    std::uniform_int_distribution<std::size_t> pick(0, points.size() - 1);
+    for (int i = 0; i < count; ++i) {
+        switch (i % 6) {
+            case 0: q.push_back(points[pick(rng)]); break;
+            case 1: q.push_back(points[pick(rng)] + random_unit_vector(rng) * (0.01f * diag)); break;
+            case 2: q.push_back(random_in_box(rng, lo, hi)); break;
+            case 3: q.push_back(mid + random_unit_vector(rng) * (10.0f * diag)); break;
+            case 4: q.push_back(mid + random_unit_vector(rng) * (1000.0f * diag)); break;
+            default: q.push_back(random_unit_vector(rng) * 1e6f); break;
+        }
+    }
+    return q;
+}
+
+// Reads a binary little-endian PLY point cloud with exactly x, y, z float properties (the format
+// of the shared scans).
+std::vector<Vec3> read_scan(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    REQUIRE(in.good());
+    std::string line;
+    std::size_t n = 0;
+    while (std::getline(in, line) && line != "end_header")
+        if (line.rfind("element vertex ", 0) == 0) n = std::stoul(line.substr(15));
+    std::vector<Vec3> points(n);
+    in.read(reinterpret_cast<char*>(points.data()), std::streamsize(n * sizeof(Vec3)));
+    REQUIRE(in.good());
+    return points;
+}
+
+}  // namespace
+
+TEST_CASE("PointGrid matches brute force on a surface sample (sphere and torus)") {
+    std::mt19937 rng(1);
+    std::vector<Vec3> points;
+    for (int i = 0; i < 6000; ++i) points.push_back(random_unit_vector(rng) * 2.0f);
+    for (int i = 0; i < 6000; ++i) {
+        const float u = uniform(rng, 0.0f, 6.2831853f), v = uniform(rng, 0.0f, 6.2831853f);
+        const float r = 1.0f + 0.3f * std::cos(v);
+        points.push_back({5.0f + r * std::cos(u), r * std::sin(u), 0.3f * std::sin(v)});
+    }
+    const PointGrid grid(points);
+    CHECK(grid.size() == points.size());
+    CHECK(count_mismatches(grid, points, mixed_queries(points, rng, 1200)) == 0);
+}
+
+TEST_CASE("PointGrid matches brute force on a uniform volume") {
+    std::mt19937 rng(2);
+    std::vector<Vec3> points;
+    for (int i = 0; i < 8000; ++i) points.push_back(random_in_box(rng, {-1, -2, -3}, {1, 2, 3}));
+    const PointGrid grid(points);
+    CHECK(count_mismatches(grid, points, mixed_queries(points, rng, 1200)) == 0);
+}
+
+TEST_CASE("PointGrid matches brute force on tight clusters far apart, with outliers") {
+    // Most cells are empty and the clusters are much smaller than a cell: the fast path rarely
+    // settles and the pyramid does the work.
+    std::mt19937 rng(3);
+    std::normal_distribution<float> g(0.0f, 1e-3f);
+    std::vector<Vec3> points;
+    for (int c = 0; c < 8; ++c) {
+        const Vec3 center = random_in_box(rng, {-100, -100, -100}, {100, 100, 100});
+        for (int i = 0; i < 1000; ++i) points.push_back(center + Vec3{g(rng), g(rng), g(rng)});
+    }
+    for (int i = 0; i < 20; ++i) points.push_back(random_in_box(rng, {-100, -100, -100}, {100, 100, 100}));
+    const PointGrid grid(points);
+    CHECK(count_mismatches(grid, points, mixed_queries(points, rng, 1200)) == 0);
+}
+
+TEST_CASE("PointGrid breaks ties by the smaller index") {
+    SUBCASE("exact duplicates") {
+        // Each location is repeated with scattered indices; a query at a duplicated location must
+        // return the first copy.
+        std::mt19937 rng(4);
+        std::vector<Vec3> locations;
+        for (int i = 0; i < 300; ++i) locations.push_back(random_in_box(rng, {0, 0, 0}, {1, 1, 1}));
+        std::vector<Vec3> points;
+        for (int copy = 0; copy < 5; ++copy)
+            for (const Vec3& p : locations) points.push_back(p);
+        const PointGrid grid(points);
+        for (std::uint32_t i = 0; i < locations.size(); ++i) {
+            CHECK(grid.nearest(locations[i]) == i);
+            CHECK(grid.nearest_squared_distance(locations[i]) == 0.0f);
+        }
+        CHECK(count_mismatches(grid, points, mixed_queries(points, rng, 600)) == 0);
+    }
+    SUBCASE("equidistant lattice points") {
+        // Integer lattice points queried at half-integer positions: up to 8 points at the same
+        // distance, lying on cell boundaries.
+        std::vector<Vec3> points;
+        for (int z = 0; z < 12; ++z)
+            for (int y = 0; y < 12; ++y)
+                for (int x = 0; x < 12; ++x) points.push_back({float(x), float(y), float(z)});
+        std::mt19937 rng(5);
+        std::vector<Vec3> queries;
+        std::uniform_int_distribution<int> half(-3, 25);
+        for (int i = 0; i < 800; ++i)
+            queries.push_back({half(rng) * 0.5f, half(rng) * 0.5f, half(rng) * 0.5f});
+        const PointGrid grid(points);
+        CHECK(count_mismatches(grid, points, queries) == 0);
+        // (0.5, 0.5, 0.5) is equidistant from the 8 corners of the first cube; (0,0,0) is index 0.
+        CHECK(grid.nearest({0.5f, 0.5f, 0.5f}) == 0);
+    }
+}
+
+TEST_CASE("PointGrid handles flat, collinear, single-point and offset clouds") {
+    std::mt19937 rng(6);
+    SUBCASE("planar") {
+        std::vector<Vec3> points;
+        for (int i = 0; i < 3000; ++i) points.push_back({uniform(rng, 0, 4), uniform(rng, 0, 1), 2.0f});
+        const PointGrid grid(points);
+        CHECK(grid.dimensions()[2] == 1);
+        CHECK(count_mismatches(grid, points, mixed_queries(points, rng, 600)) == 0);
+    }
+    SUBCASE("collinear") {
+        std::vector<Vec3> points;
+        for (int i = 0; i < 2000; ++i) points.push_back({1.0f, uniform(rng, -5, 5), -1.0f});
+        const PointGrid grid(points);
+        CHECK(count_mismatches(grid, points, mixed_queries(points, rng, 600)) == 0);
+    }
+    SUBCASE("one point") {
+        const std::vector<Vec3> points = {{1, 2, 3}};
+        const PointGrid grid(points);
+        CHECK(grid.nearest({-50, 0, 9}) == 0);
+        CHECK(grid.nearest_squared_distance({1, 2, 4}) == 1.0f);
+    }
+    SUBCASE("tiny extent far from the origin") {
+        // Spacing near the float resolution at 1000: cell assignment must stay consistent.
+        std::vector<Vec3> points;
+        for (int i = 0; i < 2000; ++i)
+            points.push_back(Vec3{1000, 1000, 1000} + random_in_box(rng, {0, 0, 0}, {0.01f, 0.01f, 0.01f}));
+        const PointGrid grid(points);
+        CHECK(count_mismatches(grid, points, mixed_queries(points, rng, 600)) == 0);
+    }
+    SUBCASE("microscopic scale") {
+        std::vector<Vec3> points;
+        for (int i = 0; i < 2000; ++i) points.push_back(random_unit_vector(rng) * 1e-12f);
+        const PointGrid grid(points);
+        std::vector<Vec3> queries;
+        for (int i = 0; i < 300; ++i) queries.push_back(random_unit_vector(rng) * uniform(rng, 0, 3e-12f));
+        CHECK(count_mismatches(grid, points, queries) == 0);
+    }
+}
+
+TEST_CASE("PointGrid matches brute force on the bunny scan, within its memory budget") {
+    const std::vector<Vec3> points = read_scan(std::string(NMESH_SHARED_DATA_DIR) + "/bunny.ply");
+    REQUIRE(points.size() == 35947);
+    const PointGrid grid(points);
+    std::mt19937 rng(7);
+    CHECK(count_mismatches(grid, points, mixed_queries(points, rng, 600)) == 0);
+
+    // Every point's nearest point is the first point at the same place (itself, or an earlier
+    // duplicate).
+    const auto key = [](const Vec3& p) { return std::array<float, 3>{p.x, p.y, p.z}; };
+    std::map<std::array<float, 3>, std::uint32_t> first;
+    for (std::uint32_t i = 0; i < points.size(); ++i) first.emplace(key(points[i]), i);
+    int wrong = 0;
+    for (std::uint32_t i = 0; i < points.size(); ++i)
+        wrong += grid.nearest(points[i]) != first.at(key(points[i]));
+    CHECK(wrong == 0);
+
+    // At most 8 bytes per point on top of the sorted copy of the points.
+    const double overhead = double(grid.memory_bytes()) - 12.0 * double(points.size());
+    MESSAGE("bunny: " << grid.occupied_cells() << " occupied cells, " << overhead / double(points.size())
+                      << " bytes per point on top of the copy");
+    CHECK(overhead <= 8.0 * double(points.size()));
+    // Sized for a surface: a few points per occupied cell.
+    const double per_cell = double(points.size()) / double(grid.occupied_cells());
+    CHECK(per_cell >= 1.5);
+    CHECK(per_cell <= 12.0);
+}
+
+TEST_CASE("PointGrid rejects clouds it cannot index") {
+    CHECK_THROWS_AS(PointGrid(std::vector<Vec3>{}), nmesh::InputError);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    CHECK_THROWS_AS(PointGrid(std::vector<Vec3>{{0, 0, 0}, {nan, 0, 0}}), nmesh::InputError);
+    CHECK_THROWS_AS(PointGrid(std::vector<Vec3>{{0, 0, -inf}, {1, 1, 1}}), nmesh::InputError);
+}
