@@ -61,35 +61,45 @@ void NeuralMesh::move_winner(Vertex w, const Vec3& x) {
 void NeuralMesh::smooth_neighbourhood(Vertex w) {
     const float an = float(params_.alpha_n);
     if (an == 0.0f) return;
+    // w's ring, clockwise: ring_[i] = to(out_[i]) with out_[i + 1] = cw_rotated(out_[i]).
     ring_.clear();
+    out_.clear();
     new_positions_.clear();
-    mesh_.for_each_outgoing_cw(w, [&](Halfedge hw) {
-        const Vertex vn = mesh_.to(hw);
-        const Vec3 p = mesh_.position(vn);
-        // One pass over vn's ring gives both the Laplacian (eq. 5) and the area-weighted normal
-        // (the sum of the cross products of consecutive ring edges). Walking clockwise, each
-        // face's second edge is the previous step's first, so each step reads one position.
-        const Halfedge start = mesh_.halfedge(vn);
-        Vec3 prev = mesh_.position(mesh_.to(mesh_.next(start))) - p;
-        Vec3 sum, normal;
-        std::uint32_t valence = 0;
-        Halfedge h = start;
-        do {
+    mesh_.for_each_outgoing_cw(w, [&](Halfedge h) {
+        out_.push_back(h);
+        ring_.push_back(mesh_.to(h));
+        new_positions_.push_back(mesh_.position(mesh_.to(h)));
+    });
+    const std::size_t k = ring_.size();
+    const Vec3 pw = mesh_.position(w);
+    for (std::size_t i = 0; i < k; ++i) {
+        const Vec3 p = new_positions_[i];
+        // One clockwise pass over ring_[i]'s own ring gives both the Laplacian (eq. 5) and the
+        // area-weighted normal (the sum of the cross products of consecutive ring edges). The
+        // pass starts at the half-edge to w, whose clockwise predecessor and successor in that
+        // ring are w's ring neighbours ring_[i + 1] and ring_[i - 1]: no lookup needed for them.
+        const Vec3 a0 = pw - p;
+        const Vec3 a1 = new_positions_[(i + k - 1) % k] - p;
+        Vec3 sum = a0 + a1;
+        Vec3 normal = cross(a0, new_positions_[(i + 1) % k] - p) + cross(a1, a0);
+        Vec3 prev = a1;  // the walk ends at ring_[i + 1], closing the cycle of cross products
+        std::uint32_t valence = 2;
+        const Halfedge stop = Mesh::twin(out_[i]);  // ring_[i] -> w, where the pass began
+        for (Halfedge h = mesh_.cw_rotated(mesh_.next(out_[i])); h != stop; h = mesh_.cw_rotated(h)) {
             const Vec3 a = mesh_.position(mesh_.to(h)) - p;
             sum += a;
             normal += cross(a, prev);
             prev = a;
             ++valence;
-            h = mesh_.cw_rotated(h);
-        } while (h != start);
+        }
         const Vec3 laplacian = sum * (1.0f / float(valence));  // eq. (5)
         const float nn = squared_norm(normal);
         const Vec3 tangential = nn > 0.0f ? laplacian - normal * (dot(laplacian, normal) / nn)  // eq. (4)
                                           : laplacian;
-        ring_.push_back(vn);
-        new_positions_.push_back(p + tangential * an);  // eq. (3)
-    });
-    for (std::size_t i = 0; i < ring_.size(); ++i) set_position(ring_[i], new_positions_[i]);
+        scratch_.push_back(p + tangential * an);  // eq. (3)
+    }
+    for (std::size_t i = 0; i < k; ++i) set_position(ring_[i], scratch_[i]);
+    scratch_.clear();
 }
 
 void NeuralMesh::adapt() {

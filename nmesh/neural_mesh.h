@@ -74,7 +74,9 @@ private:
     std::uint64_t period_start_ = 0;  // activity clock at the start of the current step-8 period
     // Scratch space reused across iterations (no allocation in steady state).
     std::vector<Vertex> ring_;
+    std::vector<Halfedge> out_;
     std::vector<Vec3> new_positions_;
+    std::vector<Vec3> scratch_;
     std::vector<std::uint32_t> inactive_;
     std::vector<Halfedge> swap_ring_;
     std::vector<float> swap_dm_;

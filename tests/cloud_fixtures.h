@@ -25,23 +25,26 @@ inline PointCloud sphere_cloud(std::size_t n, float radius = 1.0f, Vec3 center =
     return c;
 }
 
-// The bunny from the shared scans (binary little-endian PLY, float x y z, no other property).
-// Read here without the library's readers so that these tests do not depend on them.
-inline PointCloud shared_bunny() {
-    const std::string path = std::string(NMESH_SHARED_DATA_DIR) + "/bunny.ply";
-    PointCloud c;
+// Reads a binary little-endian PLY with exactly the float properties x, y, z (the format of the
+// shared scans), without the library's readers, so that tests of other parts do not depend on
+// them. Returns an empty vector when the file is missing or short.
+inline std::vector<Vec3> read_scan(const std::string& path) {
+    std::vector<Vec3> points;
     std::FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) return c;
+    if (!f) return points;
     char line[256];
     std::size_t n = 0;
     while (std::fgets(line, sizeof line, f)) {
         std::sscanf(line, "element vertex %zu", &n);
         if (std::string(line) == "end_header\n") break;
     }
-    c.points.resize(n);
-    if (std::fread(c.points.data(), sizeof(Vec3), n, f) != n) c.points.clear();
+    points.resize(n);
+    if (std::fread(points.data(), sizeof(Vec3), n, f) != n) points.clear();
     std::fclose(f);
-    return c;
+    return points;
 }
+
+// The bunny of the shared scans (35,947 points).
+inline PointCloud shared_bunny() { return PointCloud{read_scan(std::string(NMESH_SHARED_DATA_DIR) + "/bunny.ply")}; }
 
 }  // namespace nmesh::test

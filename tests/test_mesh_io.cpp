@@ -2,6 +2,7 @@
 // binary layout, colours, polygon triangulation, index errors, and the atomic-write guarantees.
 #include <doctest/doctest.h>
 
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -21,6 +22,7 @@
 #include "nmesh/error.h"
 #include "nmesh/mesh_io.h"
 #include "nmesh/point_reader.h"
+#include "io_fixtures.h"
 
 using nmesh::IndexedMesh;
 using nmesh::Vec3;
@@ -97,16 +99,7 @@ IndexedMesh random_mesh(std::size_t vertices, std::size_t triangles, std::uint32
 
 // The IoError message thrown by read_mesh(path), checked to be one line starting with the path.
 std::string read_error(const std::string& path) {
-    try {
-        nmesh::read_mesh(path);
-    } catch (const nmesh::IoError& e) {
-        const std::string message = e.what();
-        CHECK_MESSAGE(message.rfind(path + ": ", 0) == 0, message);
-        CHECK_MESSAGE(message.find('\n') == std::string::npos, message);
-        return message;
-    }
-    FAIL("no IoError reading " << path);
-    return "";
+    return nmesh::test::io_error_of(path, [](const std::string& p) { nmesh::read_mesh(p); });
 }
 
 void check_read_error(const std::string& path, std::initializer_list<const char*> fragments) {

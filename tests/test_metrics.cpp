@@ -3,6 +3,7 @@
 // JSON form.
 #include <doctest/doctest.h>
 
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -19,6 +20,7 @@
 
 #include "nmesh/error.h"
 #include "nmesh/metrics.h"
+#include "cloud_fixtures.h"
 
 using nmesh::EvalOptions;
 using nmesh::IndexedMesh;
@@ -181,19 +183,6 @@ Vec3 random_unit_vector(std::mt19937& rng) {
     }
 }
 
-// Reads the binary point PLY of the shared scans (x, y, z floats only).
-std::vector<Vec3> read_scan(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    REQUIRE(in.good());
-    std::string line;
-    std::size_t n = 0;
-    while (std::getline(in, line) && line != "end_header")
-        if (line.rfind("element vertex ", 0) == 0) n = std::stoul(line.substr(15));
-    std::vector<Vec3> points(n);
-    in.read(reinterpret_cast<char*>(points.data()), std::streamsize(n * sizeof(Vec3)));
-    REQUIRE(in.good());
-    return points;
-}
 
 // Reads the original Stanford bunny mesh (ASCII PLY: x y z confidence intensity; "3 a b c" faces).
 IndexedMesh read_bunny_mesh(const std::string& path) {
@@ -647,7 +636,7 @@ TEST_CASE("evaluate rejects inputs it cannot measure") {
 TEST_CASE("the bunny scan against the original Stanford mesh") {
     // The cloud is the mesh's vertex list, so every used vertex is at distance 0; the unused ones
     // lie within 1.9 mm of the surface. The mesh is genus 0 with 5 holes in its base.
-    const std::vector<Vec3> points = read_scan(std::string(NMESH_SHARED_DATA_DIR) + "/bunny.ply");
+    const std::vector<Vec3> points = nmesh::test::read_scan(std::string(NMESH_SHARED_DATA_DIR) + "/bunny.ply");
     const IndexedMesh mesh = read_bunny_mesh(std::string(NMESH_SHARED_DATA_DIR) + "/bunny_mesh.ply");
     REQUIRE(mesh.positions.size() == points.size());
     EvalOptions o;

@@ -3,6 +3,7 @@
 // for queries near and far from the data.
 #include <doctest/doctest.h>
 
+
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -15,6 +16,7 @@
 
 #include "nmesh/error.h"
 #include "nmesh/point_grid.h"
+#include "cloud_fixtures.h"
 
 using nmesh::NearestPoint;
 using nmesh::PointGrid;
@@ -93,20 +95,6 @@ std::vector<Vec3> mixed_queries(const std::vector<Vec3>& points, std::mt19937& r
     return q;
 }
 
-// Reads a binary little-endian PLY point cloud with exactly x, y, z float properties (the format
-// of the shared scans).
-std::vector<Vec3> read_scan(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    REQUIRE(in.good());
-    std::string line;
-    std::size_t n = 0;
-    while (std::getline(in, line) && line != "end_header")
-        if (line.rfind("element vertex ", 0) == 0) n = std::stoul(line.substr(15));
-    std::vector<Vec3> points(n);
-    in.read(reinterpret_cast<char*>(points.data()), std::streamsize(n * sizeof(Vec3)));
-    REQUIRE(in.good());
-    return points;
-}
 
 }  // namespace
 
@@ -223,7 +211,7 @@ TEST_CASE("PointGrid handles flat, collinear, single-point and offset clouds") {
 }
 
 TEST_CASE("PointGrid matches brute force on the bunny scan, within its memory budget") {
-    const std::vector<Vec3> points = read_scan(std::string(NMESH_SHARED_DATA_DIR) + "/bunny.ply");
+    const std::vector<Vec3> points = nmesh::test::read_scan(std::string(NMESH_SHARED_DATA_DIR) + "/bunny.ply");
     REQUIRE(points.size() == 35947);
     const PointGrid grid(points);
     std::mt19937 rng(7);

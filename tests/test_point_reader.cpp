@@ -2,6 +2,7 @@
 // PLY encoding and numeric type, the text formats, and every error the readers report.
 #include <doctest/doctest.h>
 
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -18,6 +19,7 @@
 
 #include "nmesh/error.h"
 #include "nmesh/point_reader.h"
+#include "io_fixtures.h"
 
 using nmesh::Vec3;
 
@@ -164,16 +166,7 @@ const char* const kEncodings[] = {"ascii", "binary_little_endian", "binary_big_e
 
 // The IoError message thrown by read_points(path), checked to be one line starting with the path.
 std::string error_of(const std::string& path) {
-    try {
-        nmesh::read_points(path);
-    } catch (const nmesh::IoError& e) {
-        const std::string message = e.what();
-        CHECK_MESSAGE(message.rfind(path + ": ", 0) == 0, message);
-        CHECK_MESSAGE(message.find('\n') == std::string::npos, message);
-        return message;
-    }
-    FAIL("no IoError reading " << path);
-    return "";
+    return nmesh::test::io_error_of(path, [](const std::string& p) { nmesh::read_points(p); });
 }
 
 // Checks that reading `path` fails with a message containing every fragment.
