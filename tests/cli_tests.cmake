@@ -73,6 +73,31 @@ expect(info_mesh 0 "faces: 1996" ${NMESH} info ${WORK}/mesh.ply)
 expect(no_edge_swap 0 "0 swaps kept of 0 tried"
   ${NMESH} reconstruct ${DATA} -o ${WORK}/nm.off --vertices 300 --no-edge-swap)
 
+# Pictures.
+expect(render_help 0 "usage: nmesh render" ${NMESH} render --help)
+expect(render_no_output 2 "" ${NMESH} render ${WORK}/mesh.ply)
+expect(render 0 "" ${NMESH} render ${WORK}/mesh.ply -o ${WORK}/mesh.png --size 256x192 --view iso --wireframe)
+expect(render_error_map 0 "" ${NMESH} render ${WORK}/mesh.ply -o ${WORK}/error.png --size 128 --error-map ${DATA})
+expect(render_missing_mesh 1 "nosuch.ply" ${NMESH} render ${WORK}/nosuch.ply -o ${WORK}/x.png)
+foreach(png mesh.png error.png)
+  if(NOT EXISTS ${WORK}/${png})
+    message(SEND_ERROR "render did not write ${png}")
+    math(EXPR failures "${failures} + 1")
+  else()
+    # The PNG signature and the IHDR width of the first image (256 = 0x00000100).
+    file(READ ${WORK}/${png} head LIMIT 24 HEX)
+    if(NOT head MATCHES "^89504e470d0a1a0a0000000d49484452")
+      message(SEND_ERROR "${png} is not a PNG file: ${head}")
+      math(EXPR failures "${failures} + 1")
+    endif()
+  endif()
+endforeach()
+file(READ ${WORK}/mesh.png ihdr OFFSET 16 LIMIT 8 HEX)
+if(NOT ihdr STREQUAL "00000100000000c0")
+  message(SEND_ERROR "mesh.png is not 256x192: ${ihdr}")
+  math(EXPR failures "${failures} + 1")
+endif()
+
 # The same seed writes the same bytes.
 execute_process(COMMAND ${NMESH} reconstruct ${DATA} -o ${WORK}/again.ply --vertices 1000 --quiet)
 file(SHA256 ${WORK}/mesh.ply first)

@@ -13,6 +13,7 @@
 
 #include "nmesh/cli/arguments.h"
 #include "nmesh/cli/progress_bar.h"
+#include "nmesh/cli/render_command.h"
 #include "nmesh/error.h"
 #include "nmesh/mesh_io.h"
 #include "nmesh/metrics.h"
@@ -31,6 +32,7 @@ constexpr const char* kMainUsage =
     "  reconstruct INPUT -o OUTPUT [options]   point cloud (PLY, XYZ, OBJ) to mesh (PLY, OBJ, OFF)\n"
     "  eval POINTS MESH [--json]               quality of a mesh against its point cloud\n"
     "  info FILE                               what a file holds\n"
+    "  render MESH -o IMAGE.png [options]      a picture of a mesh (software rendering, no GPU)\n"
     "\n"
     "Run 'nmesh <command> --help' for the options of a command.\n";
 
@@ -292,6 +294,10 @@ int main(int argc, char** argv) {
         if (command == "info") {
             hint = "run 'nmesh info --help' for usage";
             return run_info(argc, argv);
+        }
+        if (command == "render") {
+            hint = "run 'nmesh render --help' for usage";
+            return run_render(argc, argv);
         }
         if (command == "--help" || command == "-h" || command == "help") {
             std::fputs(kMainUsage, stdout);
