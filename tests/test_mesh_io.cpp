@@ -34,35 +34,8 @@ namespace fs = std::filesystem;
 
 const std::string kData = NMESH_SHARED_DATA_DIR;
 
-// A fresh directory, removed with its contents when the test ends.
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        static int serial = 0;
-        const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
-        path = fs::temp_directory_path() /
-               ("nmesh_mesh_io_" + std::to_string(stamp) + "_" + std::to_string(serial++));
-        fs::create_directories(path);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-    std::string at(const std::string& name) const { return (path / name).string(); }
-    std::string file(const std::string& name, const std::string& bytes) const {
-        std::ofstream out(at(name), std::ios::binary);
-        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        REQUIRE(out.good());
-        return at(name);
-    }
-    // The names in the directory, sorted.
-    std::vector<std::string> names() const {
-        std::vector<std::string> result;
-        for (const auto& entry : fs::directory_iterator(path))
-            result.push_back(entry.path().filename().string());
-        std::sort(result.begin(), result.end());
-        return result;
-    }
+struct TempDir : nmesh::test::TempDir {
+    TempDir() : nmesh::test::TempDir("nmesh_mesh_io_") {}
 };
 
 std::string contents(const std::string& path) {

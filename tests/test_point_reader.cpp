@@ -30,28 +30,8 @@ namespace fs = std::filesystem;
 const std::string kData = NMESH_SHARED_DATA_DIR;
 constexpr std::size_t kBunnyPoints = 35947;  // README of the shared data
 
-// A fresh directory, removed with its contents when the test ends.
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        static int serial = 0;
-        const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
-        path = fs::temp_directory_path() /
-               ("nmesh_point_reader_" + std::to_string(stamp) + "_" + std::to_string(serial++));
-        fs::create_directories(path);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-    // Writes `bytes` to a file called `name` in the directory; returns its path.
-    std::string file(const std::string& name, const std::string& bytes) const {
-        const std::string p = (path / name).string();
-        std::ofstream out(p, std::ios::binary);
-        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        REQUIRE(out.good());
-        return p;
-    }
+struct TempDir : nmesh::test::TempDir {
+    TempDir() : nmesh::test::TempDir("nmesh_point_reader_") {}
 };
 
 bool same_bits(const Vec3& a, const Vec3& b) { return std::memcmp(&a, &b, sizeof(Vec3)) == 0; }
