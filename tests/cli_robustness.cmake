@@ -19,13 +19,7 @@ set(known 0)
 # a check is reported but does not fail the test; once it passes, the test fails until the name is
 # removed from this list (so a fix is noticed).
 set(KNOWN_BUGS
-  output_is_input_absolute
-  output_is_input_dot
-  stats_is_input
-  snapshot_is_input
-  stats_is_output
   four_points_default_target
-  parameter_--snapshots_10,,20
 )
 
 macro(fail msg)
@@ -213,8 +207,8 @@ file(COPY ${DATA} DESTINATION ${WORK})  # restore the copy if it was replaced
 expect(output_is_input_absolute 2 "must not be the input"
   ${CMAKE_COMMAND} -E chdir ${WORK} ${NMESH} reconstruct ${data_name} -o ${bunny} --vertices 50 --quiet)
 file(COPY ${DATA} DESTINATION ${WORK})
-# Known defect: only -o is compared with the input; --stats and the snapshot names are not, and
-# --stats is not compared with -o either, so each can replace the input or the mesh.
+# --stats and the snapshot names must not name the input, nor --stats the mesh: a usage error,
+# the input untouched.
 file(MAKE_DIRECTORY ${WORK}/clash)
 foreach(case "stats_is_input;in.ply;--stats;in.ply" "snapshot_is_input;mesh_100v.ply;--snapshots;100"
     "stats_is_output;in.ply;--stats;mesh.ply")
@@ -295,8 +289,7 @@ execute_process(COMMAND ${NMESH} reconstruct ${WORK}/four.xyz -o ${WORK}/four_me
 check(four_points_default_target "exit status '${rc}' (5 s limit)\n${out}${err}" rc MATCHES "^[01]$")
 
 # Invalid parameters: a usage error (status 2), one line naming the option or parameter.
-# Known defect: --snapshots is parsed only after the input has been read, so its usage error
-# comes after the "read" line (and after reading a file that may be large).
+# Every option is checked before the input is read.
 foreach(bad
     "--alpha-w;0;invalid parameter alpha_w" "--alpha-w;1.01;invalid parameter alpha_w"
     "--alpha-w;nan;--alpha-w needs a number" "--alpha;inf;--alpha needs a number"

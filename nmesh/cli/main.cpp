@@ -6,10 +6,12 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "nmesh/cli/arguments.h"
 #include "nmesh/cli/progress_bar.h"
@@ -86,6 +88,16 @@ bool wants_help(int argc, char** argv) {
     return false;
 }
 
+// Whether two paths name the same file, however they are spelled (./x, an absolute path, a
+// hard link), so that no output can replace the input or another output.
+bool same_file(const std::string& a, const std::string& b) {
+    namespace fs = std::filesystem;
+    std::error_code ea, eb, eq;
+    const fs::path pa = fs::weakly_canonical(a, ea), pb = fs::weakly_canonical(b, eb);
+    if (!ea && !eb && pa == pb) return true;
+    return fs::equivalent(a, b, eq);
+}
+
 std::string snapshot_path(const std::string& output, std::uint32_t n) {
     const auto slash = output.find_last_of('/');
     const auto dot = output.find_last_of('.');
@@ -151,7 +163,18 @@ int run_reconstruct(int argc, char** argv) {
     const std::string input = args.positional()[0];
     const std::string output = args.has("-o") ? args.text("-o") : args.text("--output");
     if (output.empty()) throw UsageError("reconstruct needs an output file: -o OUTPUT");
-    if (output == input) throw UsageError("the output file must not be the input file");
+    if (same_file(output, input)) throw UsageError("the output file must not be the input file");
+    const std::string stats_path = args.text("--stats");
+    if (!stats_path.empty() && (same_file(stats_path, input) || same_file(stats_path, output)))
+        throw UsageError("the --stats file must not be the input or the output file");
+    std::vector<std::uint32_t> snapshots;
+    for (std::uint64_t n : args.count_list("--snapshots")) {
+        const std::string path = snapshot_path(output, std::uint32_t(n));
+        if (n > 0xffffffffull || same_file(path, input) || (!stats_path.empty() && same_file(path, stats_path)))
+            throw UsageError("--snapshots " + std::to_string(n) + " would write " + path +
+                             ", which is the input or the --stats file");
+        snapshots.push_back(std::uint32_t(n));
+    }
 
     Parameters p;
     auto bounded_count = [&](const char* name, std::uint64_t fallback) {
@@ -193,7 +216,7 @@ int run_reconstruct(int argc, char** argv) {
         bar.update(pr);
         return !g_interrupted.load();
     };
-    for (std::uint64_t n : args.count_list("--snapshots")) cb.snapshot_vertices.push_back(std::uint32_t(n));
+    cb.snapshot_vertices = snapshots;
     cb.on_snapshot = [&](std::uint32_t n, const IndexedMesh& m) {
         write_mesh(snapshot_path(output, n), m, write_options);
     };
@@ -220,10 +243,10 @@ int run_reconstruct(int argc, char** argv) {
     write_mesh(output, r.mesh, write_options);
     if (args.has("--stats")) {
         const QualityReport q = evaluate(cloud.points, r.mesh);
-        write_stats(args.text("--stats"), input, p, r, q);
+        write_stats(stats_path, input, p, r, q);
         if (!quiet)
             std::fprintf(stderr, "nmesh: DM(X,T) %.6g, Hausdorff %.3g%% of the diagonal; wrote %s\n", q.dm_x_t,
-                         100.0 * q.hausdorff_rel, args.text("--stats").c_str());
+                         100.0 * q.hausdorff_rel, stats_path.c_str());
     }
     if (!quiet) print_summary(r, output);
     return 0;
