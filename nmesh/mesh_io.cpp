@@ -37,9 +37,12 @@ long process_id() {
 // Distinguishes the temporaries of concurrent writes from one process.
 std::atomic<unsigned long> temp_counter{0};
 
+enum class MeshFormat { ply, obj, off };
+MeshFormat mesh_format(const std::string& path);
+
 }  // namespace
 
-void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& body) {
+void check_output_location(const std::string& path) {
     namespace fs = std::filesystem;
     if (path.empty()) throw IoError("(empty path): cannot write a file without a name");
     const fs::path dir = fs::path(path).parent_path();
@@ -49,6 +52,22 @@ void write_file_atomically(const std::string& path, const std::function<void(std
                       (fs::exists(dir, ec) ? "'" + dir.string() + "' is not a directory"
                                            : "directory '" + dir.string() + "' does not exist"));
     }
+#ifndef _WIN32
+    const std::string d = dir.empty() ? std::string(".") : dir.string();
+    if (::access(d.c_str(), W_OK | X_OK) != 0)
+        throw IoError(path + ": cannot write: directory '" + d + "': " + std::strerror(errno));
+#endif
+    if (fs::is_directory(fs::path(path), ec)) throw IoError(path + ": cannot write: is a directory");
+}
+
+void check_mesh_output(const std::string& path) {
+    mesh_format(path);
+    check_output_location(path);
+}
+
+void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& body) {
+    namespace fs = std::filesystem;
+    check_output_location(path);
 
     const std::string temp =
         path + ".tmp-" + std::to_string(process_id()) + "-" + std::to_string(temp_counter.fetch_add(1));
@@ -73,6 +92,7 @@ void write_file_atomically(const std::string& path, const std::function<void(std
         discard();
         throw IoError(path + ": write failed: " + reason);
     }
+    std::error_code ec;
     fs::rename(temp, path, ec);
     if (ec) {
         discard();
@@ -261,8 +281,6 @@ void check_writable(const std::string& path, const IndexedMesh& mesh, const Mesh
                 throw ParameterError(where + "mesh.triangles[" + std::to_string(t) + "] uses vertex " +
                                      std::to_string(v) + " of " + std::to_string(n));
 }
-
-enum class MeshFormat { ply, obj, off };
 
 MeshFormat mesh_format(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();

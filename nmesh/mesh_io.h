@@ -23,6 +23,13 @@ namespace nmesh {
 // The data is flushed to the operating system, not fsynced: a system crash may lose it.
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& body);
 
+// Checks, creating nothing, what write_file_atomically would refuse at once: an empty path, a
+// parent directory that is missing, not a directory or not writable, a path naming a directory.
+// Throws the same IoError. For callers that want to fail before long work, not after it.
+void check_output_location(const std::string& path);
+// check_output_location, and the mesh format of the extension as write_mesh requires it.
+void check_mesh_output(const std::string& path);
+
 struct MeshWriteOptions {
     // PLY only: ASCII instead of the default binary_little_endian.
     bool ply_ascii = false;

@@ -178,6 +178,15 @@ bool parse_int(std::string_view token, std::int64_t& out) {
     return ec == std::errc() && end == last;
 }
 
+// Whether `token` is written as an integer (an optional sign and digits), whatever its size.
+bool is_integer_text(std::string_view token) {
+    if (!token.empty() && (token[0] == '+' || token[0] == '-')) token.remove_prefix(1);
+    if (token.empty()) return false;
+    for (char c : token)
+        if (c < '0' || c > '9') return false;
+    return true;
+}
+
 using CharSet = std::array<bool, 256>;
 
 constexpr CharSet make_separators(bool comma) {
@@ -238,7 +247,9 @@ public:
         if (ec) fail("cannot determine the file size: " + ec.message());
         file_ = std::fopen(path.c_str(), "rb");
         if (!file_) fail(std::string("cannot open: ") + std::strerror(errno));
-        buffer_.resize(kBufferBytes);
+        // A buffer no larger than the file (plus one byte, to see its end): small files are
+        // read without touching a whole megabyte of memory.
+        buffer_.resize(static_cast<std::size_t>(std::min<std::uint64_t>(kBufferBytes, size_ + 1)));
     }
     ~InputFile() {
         if (file_) std::fclose(file_);
@@ -324,7 +335,10 @@ public:
             if (avail >= kMaxLineBytes)
                 fail_at_line(line_ + 1, "line longer than " + std::to_string(kMaxLineBytes >> 20) +
                                             " MiB (binary data in a text file?)");
-            compact();  // room for the rest of the line: avail < kMaxLineBytes <= buffer size
+            compact();
+            // Room for the rest of the line (a file that grew after it was opened may need more
+            // than its size at opening): the buffer grows up to kMaxLineBytes.
+            if (end_ == buffer_.size()) buffer_.resize(std::min(2 * buffer_.size(), kMaxLineBytes));
             read_more();
         }
     }
@@ -769,7 +783,8 @@ private:
                 std::int64_t index = 0;
                 if (!parse_int(t, index)) {
                     if (has_binary_byte(line)) in_.fail_line("binary data, not text");
-                    in_.fail_line("vertex index " + quote_token(t) + " is not an integer");
+                    in_.fail_line("vertex index " + quote_token(t) +
+                                  (is_integer_text(t) ? " is out of range" : " is not an integer"));
                 }
                 add_index(index, r, fail);
             }
@@ -1031,6 +1046,9 @@ void read_obj(InputFile& in, ReadFaces faces, FileGeometry& g) {
                 std::int64_t index = 0;
                 if (!parse_int(v, index)) {
                     if (has_binary_byte(line)) in.fail_line("binary data, not text");
+                    if (is_integer_text(v))
+                        in.fail_line("vertex index " + std::string(v) + " is out of range (" +
+                                     std::to_string(defined) + " vertices are defined above this line)");
                     in.fail_line("face corner " + quote_token(corner) +
                                  " does not start with a vertex index");
                 }
@@ -1132,7 +1150,9 @@ void read_off(InputFile& in, ReadFaces faces, FileGeometry& g) {
             if (t.empty())
                 in.fail_line("face " + std::to_string(f) + " has fewer than " + std::to_string(n) +
                              " indices");
-            if (!parse_int(t, index)) in.fail_line("vertex index " + quote_token(t) + " is not an integer");
+            if (!parse_int(t, index))
+                in.fail_line("vertex index " + quote_token(t) +
+                             (is_integer_text(t) ? " is out of range" : " is not an integer"));
             if (index < 0 || static_cast<std::uint64_t>(index) >= nv)
                 in.fail_line("face " + std::to_string(f) + ": vertex index " + std::to_string(index) +
                              " is out of range (the file has " + count_text(nv, "vertices") + ")");

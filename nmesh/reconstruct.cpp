@@ -118,8 +118,30 @@ Result reconstruct(const PointCloud& cloud, const Parameters& params, const Call
     constexpr std::uint64_t kReportMask = (1u << 16) - 1;  // a callback every 65,536 iterations
 
     // Step 9: repeat until the target size is reached.
+    // Choice: a run that cannot reach the target stops with an error instead of going on forever.
+    // Vertices that win no signal in a step-8 period are removed, so a cloud of P points carries
+    // a limited number of vertices (53,458 for the bunny's 35,947 points with Table 2's Cec and
+    // Cvs), and any cloud carries few when Cec is small against Cvs. A growing mesh reaches a new
+    // largest size in every step-8 period (Cec * n / Cvs splits per period against a few
+    // removals); kStallPeriods periods in a row without one mean the mesh has stopped growing.
+    constexpr std::uint64_t kStallPeriods = 8;
+    std::uint32_t largest = engine.mesh().n_vertices();
+    std::uint64_t largest_pass = 0;  // removal pass count when `largest` was reached
     while (engine.mesh().n_vertices() < params.target_vertices) {
         engine.iterate();
+        if (engine.mesh().n_vertices() > largest) {
+            largest = engine.mesh().n_vertices();
+            largest_pass = engine.stats().removal_passes;
+        } else if (engine.stats().removal_passes - largest_pass >= kStallPeriods) {
+            throw InputError("the mesh stopped growing at " + std::to_string(largest) + " vertices (" +
+                             std::to_string(engine.stats().removal_passes - largest_pass) +
+                             " removal periods without a larger mesh, " + std::to_string(engine.iteration()) +
+                             " iterations): " + std::to_string(cloud.size()) + " points cannot carry " +
+                             std::to_string(params.target_vertices) +
+                             " vertices with Cvs " + std::to_string(params.cvs) + " and Cec " +
+                             std::to_string(params.cec) + "; ask for at most about " + std::to_string(largest) +
+                             " vertices, or a larger Cec");
+        }
         while (next_snapshot < snapshots.size() && engine.mesh().n_vertices() >= snapshots[next_snapshot]) {
             if (callbacks.on_snapshot) callbacks.on_snapshot(snapshots[next_snapshot], norm.to_input(engine.mesh().to_indexed()));
             ++next_snapshot;
@@ -128,6 +150,15 @@ Result reconstruct(const PointCloud& cloud, const Parameters& params, const Call
             result.cancelled = true;
             break;
         }
+    }
+    // Choice: a target of 4 is the initial tetrahedron, reached before any iteration; it still
+    // learns, with steps 1-6 for Cvs iterations per vertex (4 Cvs in all), so that it is fitted
+    // to the cloud rather than returned as placed. A run to 8 or more vertices takes at least
+    // that many iterations anyway (a split every Cvs iterations); smaller ones are topped up.
+    const std::uint64_t minimum = 4 * std::uint64_t(params.cvs);
+    while (!result.cancelled && engine.iteration() < minimum) {
+        engine.adapt();
+        if ((engine.iteration() & kReportMask) == 0 && !report(false)) result.cancelled = true;
     }
     // Optional settling phase: steps 1-6 only.
     if (!result.cancelled) {

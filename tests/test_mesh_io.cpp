@@ -333,12 +333,18 @@ TEST_CASE("read_mesh errors: indices out of range, short faces, missing face lis
                      {"line 3", "vertex index 3 is out of range (2 vertices are defined above this line)"});
     check_read_error(dir.file("neg.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 1 2\n"),
                      {"line 4", "vertex index -4 is out of range"});
+    check_read_error(dir.file("huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999/1\n"),
+                     {"line 4", "vertex index 99999999999999999999 is out of range (3 vertices"});
+    check_read_error(dir.file("hugeneg.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -99999999999999999999\n"),
+                     {"line 4", "vertex index -99999999999999999999 is out of range"});
     check_read_error(dir.file("two.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n"),
                      {"line 3", "at least 3 corners, found 2"});
     check_read_error(dir.file("word.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 b 2\n"),
                      {"line 4", "face corner 'b' does not start with a vertex index"});
     check_read_error(dir.file("hi.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"),
                      {"line 6", "vertex index 3 is out of range"});
+    check_read_error(dir.file("huge.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 18446744073709551616\n"),
+                     {"line 6", "vertex index '18446744073709551616' is out of range"});
     check_read_error(dir.file("two.off", "OFF\n3 1 0\n0.0 0 0\n1.0 0 0\n0.0 1 0\n2 0 1\n"),
                      {"line 6", "corner count '2' is not an integer >= 3"});
 }
@@ -362,6 +368,25 @@ TEST_CASE("write_mesh refuses an unknown extension or a missing directory, creat
     CHECK_THROWS_WITH_AS(nmesh::write_mesh(dir.at("sub/file/m.ply"), mesh),
                          doctest::Contains("is not a directory"), nmesh::IoError);
     CHECK(dir.names() == std::vector<std::string>{"sub"});
+}
+
+TEST_CASE("check_mesh_output and check_output_location refuse what writing would, creating nothing") {
+    TempDir dir;
+    const std::string missing = dir.at("no/such/dir/m.ply");
+    CHECK_THROWS_WITH_AS(nmesh::check_mesh_output(dir.at("m.stl")), doctest::Contains("unknown mesh format '.stl'"),
+                         nmesh::IoError);
+    CHECK_NOTHROW(nmesh::check_output_location(dir.at("m.stl")));  // any name will do for a plain file
+    CHECK_THROWS_WITH_AS(nmesh::check_mesh_output(missing),
+                         doctest::Contains((missing + ": cannot write: directory").c_str()), nmesh::IoError);
+    CHECK_THROWS_WITH_AS(nmesh::check_output_location(dir.at("no/stats.json")),
+                         doctest::Contains("does not exist"), nmesh::IoError);
+    CHECK_THROWS_WITH_AS(nmesh::check_output_location(""), doctest::Contains("without a name"), nmesh::IoError);
+    std::ofstream(dir.at("file")) << "x";
+    CHECK_THROWS_WITH_AS(nmesh::check_output_location(dir.at("file/stats.json")),
+                         doctest::Contains("is not a directory"), nmesh::IoError);
+    CHECK_NOTHROW(nmesh::check_mesh_output(dir.at("m.PLY")));
+    CHECK_NOTHROW(nmesh::check_mesh_output(dir.at("file.obj")));
+    CHECK(dir.names() == std::vector<std::string>{"file"});
 }
 
 TEST_CASE("write_mesh refuses meshes no reader could take back (ParameterError, nothing written)") {
@@ -446,11 +471,14 @@ TEST_CASE("write_file_atomically: on failure the target is untouched and no temp
     CHECK(dir.names() == std::vector<std::string>{"m.ply"});
 }
 
-TEST_CASE("write_file_atomically: a rename that fails (target is a directory) leaves no temporary") {
+TEST_CASE("write_file_atomically: a target that is a directory is refused before anything is written") {
     TempDir dir;
     fs::create_directories(dir.path / "out.ply" / "inside");
     CHECK_THROWS_WITH_AS(nmesh::write_mesh(dir.at("out.ply"), random_mesh(3, 1, 5)),
-                         doctest::Contains((dir.at("out.ply") + ": cannot replace it").c_str()),
+                         doctest::Contains((dir.at("out.ply") + ": cannot write: is a directory").c_str()),
+                         nmesh::IoError);
+    CHECK_THROWS_WITH_AS(nmesh::check_mesh_output(dir.at("out.ply")),
+                         doctest::Contains((dir.at("out.ply") + ": cannot write: is a directory").c_str()),
                          nmesh::IoError);
     CHECK(dir.names() == std::vector<std::string>{"out.ply"});
     CHECK(fs::is_directory(dir.path / "out.ply" / "inside"));

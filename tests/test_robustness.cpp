@@ -23,8 +23,8 @@ using namespace nmesh;
 using nmesh::test::sphere_cloud;
 
 // The sanitizer build of CI also runs the whole-mesh check after every topology operation, which
-// makes a run to n vertices cost O(n^2): the long runs are scaled down there (about 60 times
-// slower per vertex at 2,500 vertices). NMESH_ROBUST_LONG_RUN_VERTICES overrides the long run.
+// makes a run to n vertices cost O(n^2): the long runs are scaled down there (to 1,500 vertices,
+// a few seconds each). NMESH_ROBUST_LONG_RUN_VERTICES overrides the size of the 200,000 run.
 #if defined(__SANITIZE_ADDRESS__)
 #define NMESH_ROBUST_SANITIZED 1
 #elif defined(__has_feature)
@@ -110,10 +110,10 @@ TEST_CASE("degenerate: exactly four distinct points, many times over, give a val
     PointCloud c;
     for (int i = 0; i < 400; ++i) c.points.push_back(corners[i % 4]);
     Parameters p;
-    p.target_vertices = 4;  // reached before any iteration: the initial tetrahedron itself
+    p.target_vertices = 4;  // the initial tetrahedron itself, fitted for 4 Cvs iterations
     const Result four = reconstruct(c, p);
     require_closed_manifold(four.mesh, 4);
-    CHECK(four.stats.iterations == 0);
+    CHECK(four.stats.iterations == 4u * p.cvs);
     p.target_vertices = 5;  // one more vertex than distinct points
     require_closed_manifold(reconstruct(c, p).mesh, 5);
 }
@@ -218,12 +218,11 @@ TEST_CASE("target above the number of points: reached while the cloud can carry 
 }
 
 // Vertices that win no signal in a Cec * n period are removed, and with P points at most about
-// P vertices can win: the mesh stops growing near 1.3 P (growth per period, n Cec / Cvs splits,
+// P vertices can win: the mesh stops growing somewhat above P (growth per period, n Cec / Cvs splits,
 // balances the removals, about n - P). A larger target is never reached: the run must not go on
-// forever. Known defect: today it does, so this test is marked should_fail; when reconstruct()
-// refuses such a target (or stops), remove the decorator.
-TEST_CASE("target far above the number of points: refused or reached, never endless" *
-          doctest::should_fail()) {
+// forever. reconstruct() stops with an InputError once the mesh has not grown for 8 step-8
+// periods.
+TEST_CASE("target far above the number of points: refused or reached, never endless") {
     const std::uint32_t points = kSanitized ? 50 : 200;
     const PointCloud c = sphere_cloud(points);
     Parameters p;
@@ -240,12 +239,42 @@ TEST_CASE("target far above the number of points: refused or reached, never endl
     Result r;
     try {
         r = reconstruct(c, p, cb);
-    } catch (const Error& e) {
+    } catch (const InputError& e) {
         refused = true;
-        MESSAGE("refused: " << e.what());
+        MESSAGE("refused: " << std::string(e.what()));
+        CHECK(std::string(e.what()).find("the mesh stopped growing") != std::string::npos);
+        CHECK(std::string(e.what()).find(std::to_string(points) + " points cannot carry " +
+                                         std::to_string(p.target_vertices) + " vertices") != std::string::npos);
     }
+    CHECK(reported < budget);  // stopped by reconstruct(), not by the test's callback
     INFO("stopped by the test after " << reported << " iterations at " << r.mesh.positions.size() << " vertices");
     CHECK((refused || (!r.cancelled && r.mesh.positions.size() == p.target_vertices)));
+}
+
+TEST_CASE("parameters that stop growth on any cloud end with the same error") {
+    // Cec 1 with Cvs 100: a removal pass every n iterations takes about e^-1 of the vertices,
+    // while only n / 100 splits happen in between: the mesh can never grow far.
+    const PointCloud c = sphere_cloud(kSanitized ? 500 : 5000);
+    Parameters p;
+    p.target_vertices = 1000;
+    p.cec = 1;
+    CHECK_THROWS_WITH_AS(reconstruct(c, p), doctest::Contains("the mesh stopped growing"), InputError);
+}
+
+TEST_CASE("a target of 4: the tetrahedron learns the cloud instead of being returned as placed") {
+    const PointCloud c = sphere_cloud(2000, 1.0f, {5, 0, 0});  // a unit sphere away from the origin
+    Parameters p;
+    p.target_vertices = 4;
+    const Result r = reconstruct(c, p);
+    require_closed_manifold(r.mesh, 4);
+    CHECK(r.stats.iterations == 4u * p.cvs);
+    CHECK(r.stats.splits == 0);
+    // Fitted: every vertex near the sphere (the tetrahedron's vertices sit on it once each
+    // has won about Cvs signals; the smoothing pulls them a little inward).
+    for (const Vec3& v : r.mesh.positions) {
+        INFO(v.x << " " << v.y << " " << v.z);
+        CHECK(std::abs(norm(v - Vec3{5, 0, 0}) - 1.0f) < 0.35f);
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -254,21 +283,23 @@ TEST_CASE("target far above the number of points: refused or reached, never endl
 TEST_CASE("long run: a mesh grown to 200,000 vertices stays a valid manifold all the way") {
     // (1,500 in the sanitizer build, where every topology operation is checked anyway.)
     // 400,000 points on an ellipsoid inside a box of diagonal below 1 (normalised input).
-    // Cvs 5 and Cec 2 (the same Cec/Cvs margin over e^-Cec as Table 2, 0.4 against 0.14) grow
-    // the mesh in about 2.4 million iterations instead of the 22 million of Cvs 100, which with
-    // a whole-mesh check every 10,000 iterations would take minutes.
+    // Cvs 3 and Cec 3 (Cec/Cvs = 1, far above e^-Cec = 0.05, so removals never stall growth)
+    // reach the target in about 0.85 million iterations instead of the 22 million of Table 2's
+    // Cvs 100: a whole-mesh check every 10,000 iterations (about 90 ms each at 100,000 vertices)
+    // then costs seconds, not minutes.
     const std::uint32_t target = NMESH_ROBUST_LONG_RUN_VERTICES;
     const std::vector<Vec3> pts = ellipsoid_points(2 * std::size_t(target), {0.3f, 0.2f, 0.15f}, 11);
     Parameters p;
     p.target_vertices = target;
-    p.cvs = 5;
-    p.cec = 2;
+    p.cvs = 3;
+    p.cec = 3;
     NeuralMesh engine(pts, bounding_box(pts), p);
     const auto start = std::chrono::steady_clock::now();
     std::uint64_t checks = 0;
+    const std::uint64_t check_period = kSanitized ? 1000 : 10000;  // the small run is short
     while (engine.mesh().n_vertices() < target) {
         engine.iterate();
-        if (engine.iteration() % 10000 == 0) {
+        if (engine.iteration() % check_period == 0) {
             const ManifoldCheck c = check_manifold(engine.mesh());
             INFO("after " << engine.iteration() << " iterations, " << engine.mesh().n_vertices() << " vertices: " << c.error);
             REQUIRE(c.ok);
@@ -281,7 +312,7 @@ TEST_CASE("long run: a mesh grown to 200,000 vertices stays a valid manifold all
     const std::string consistency = engine.check_consistency();
     INFO(consistency);
     REQUIRE(consistency.empty());
-    CHECK(checks >= target * p.cvs / 10000);  // at least one check per 10,000 / Cvs splits
+    CHECK(checks >= target * p.cvs / check_period);  // at least one check per check_period / Cvs splits
 
     // Every vertex on the ellipsoid: (x/a)^2 + (y/b)^2 + (z/c)^2 close to 1.
     const IndexedMesh m = engine.mesh().to_indexed();
@@ -299,7 +330,7 @@ TEST_CASE("long run: a mesh grown to 200,000 vertices stays a valid manifold all
                 target, (unsigned long long)engine.iteration(), (unsigned long long)checks, seconds,
                 sum / double(m.positions.size()), worst);
     // The small sanitizer run is too short to converge: its bounds only catch a broken run.
-    CHECK(sum / double(m.positions.size()) < (kSanitized ? 0.05 : 0.01));
+    CHECK(sum / double(m.positions.size()) < (kSanitized ? 0.1 : 0.01));
     CHECK(worst < (kSanitized ? 0.5 : 0.1));
 }
 

@@ -60,7 +60,7 @@ constexpr const char* kReconstructUsage =
     "  --stats FILE.json      write parameters, statistics and quality metrics as JSON\n"
     "  --ascii                write PLY as ASCII instead of binary\n"
     "  --save-on-interrupt    on Ctrl-C, write the mesh reached so far before exiting\n"
-    "  --quiet                no progress and no summary\n";
+    "  --quiet                no progress and no summary (warnings and errors still shown)\n";
 
 constexpr const char* kEvalUsage =
     "usage: nmesh eval POINTS MESH [--json]\n"
@@ -119,6 +119,31 @@ void print_summary(const Result& r, const std::string& output) {
                  (unsigned long long)s.swaps_tried, s.seconds, s.seconds > 0 ? s.iterations / s.seconds / 1e6 : 0.0);
 }
 
+// `text` as a JSON string literal: quotes, backslashes and control characters escaped; other
+// bytes (a path's UTF-8, or whatever its bytes are) copied as they are.
+std::string json_string(const std::string& text) {
+    std::string out = "\"";
+    for (const char ch : text) {
+        const auto c = static_cast<unsigned char>(ch);
+        switch (c) {
+            case '"': out += "\\\""; break;
+            case '\\': out += "\\\\"; break;
+            case '\n': out += "\\n"; break;
+            case '\t': out += "\\t"; break;
+            case '\r': out += "\\r"; break;
+            default:
+                if (c < 0x20) {
+                    char buf[8];
+                    std::snprintf(buf, sizeof buf, "\\u%04x", unsigned(c));
+                    out += buf;
+                } else {
+                    out += ch;
+                }
+        }
+    }
+    return out + "\"";
+}
+
 void write_stats(const std::string& path, const std::string& input, const Parameters& p, const Result& r,
                  const QualityReport& q) {
     const Statistics& s = r.stats;
@@ -127,7 +152,7 @@ void write_stats(const std::string& path, const std::string& input, const Parame
     write_file_atomically(path, [&](std::ostream& o) {
         o.precision(10);
         o << "{\n"
-          << "  \"input\": \"" << input << "\",\n"
+          << "  \"input\": " << json_string(input) << ",\n"
           << "  \"seed\": " << p.seed << ",\n"
           << "  \"parameters\": {\"target_vertices\": " << p.target_vertices << ", \"alpha_w\": " << p.alpha_w
           << ", \"alpha_n\": " << p.alpha_n << ", \"alpha\": " << p.alpha << ", \"cvs\": " << p.cvs
@@ -175,6 +200,10 @@ int run_reconstruct(int argc, char** argv) {
                              ", which is the input or the --stats file");
         snapshots.push_back(std::uint32_t(n));
     }
+    // Outputs that cannot be written are errors now, not after the learning.
+    check_mesh_output(output);
+    if (!stats_path.empty()) check_output_location(stats_path);
+    for (std::uint32_t n : snapshots) check_mesh_output(snapshot_path(output, n));
 
     Parameters p;
     auto bounded_count = [&](const char* name, std::uint64_t fallback) {
@@ -202,13 +231,13 @@ int run_reconstruct(int argc, char** argv) {
 
     PointReadReport read_report;
     const PointCloud cloud = read_points(input, &read_report);
-    if (!quiet) {
+    if (!quiet)
         std::fprintf(stderr, "nmesh: read %s: %llu points (%s)\n", input.c_str(),
                      (unsigned long long)read_report.points_read, read_report.format.c_str());
-        if (read_report.non_finite_dropped)
-            std::fprintf(stderr, "nmesh: warning: %s: dropped %llu points with NaN or infinite coordinates\n",
-                         input.c_str(), (unsigned long long)read_report.non_finite_dropped);
-    }
+    // Warnings are printed even with --quiet, which silences only progress and summaries.
+    if (read_report.non_finite_dropped)
+        std::fprintf(stderr, "nmesh: warning: %s: dropped %llu points with NaN or infinite coordinates\n",
+                     input.c_str(), (unsigned long long)read_report.non_finite_dropped);
 
     ProgressBar bar(ProgressBar::detect(quiet));
     Callbacks cb;

@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "nmesh/bounding_box.h"
 #include "nmesh/error.h"
@@ -38,9 +39,35 @@ inline std::string scratch_path(const std::string& extension) {
     return std::string(dir && *dir ? dir : "/tmp") + "/nmesh_fuzz_" + std::to_string(::getpid()) + extension;
 }
 
+// The scratch files of this process, removed when it exits normally (libFuzzer's -runs and
+// -max_total_time end with exit(); after a crash they stay, beside the reproducer).
+class ScratchFiles {
+public:
+    ScratchFiles() = default;
+    ScratchFiles(const ScratchFiles&) = delete;
+    ScratchFiles& operator=(const ScratchFiles&) = delete;
+    ~ScratchFiles() {
+        for (const std::string& p : paths_) std::remove(p.c_str());
+    }
+    void add(const std::string& path) {
+        for (const std::string& p : paths_)
+            if (p == path) return;
+        paths_.push_back(path);
+    }
+
+private:
+    std::vector<std::string> paths_;
+};
+
+inline void remember_scratch(const std::string& path) {
+    static ScratchFiles files;
+    files.add(path);
+}
+
 // Writes the input to the scratch file for `extension`; returns its path.
 inline std::string write_input(const std::uint8_t* data, std::size_t size, const std::string& extension) {
     const std::string path = scratch_path(extension);
+    remember_scratch(path);
     std::FILE* f = std::fopen(path.c_str(), "wb");
     if (!f) finding("cannot create the scratch file", path);
     if (size > 0 && std::fwrite(data, 1, size, f) != size) finding("cannot write the scratch file", path);
@@ -116,6 +143,7 @@ inline Reading read_everything(const std::string& path) {
 // A mesh read back from `extension` after write_mesh is the same mesh, bit for bit.
 inline void round_trip(const IndexedMesh& mesh, const std::string& extension, bool ply_ascii = false) {
     const std::string path = scratch_path("_out" + extension);
+    remember_scratch(path);
     MeshWriteOptions options;
     options.ply_ascii = ply_ascii;
     write_mesh(path, mesh, options);
@@ -124,7 +152,6 @@ inline void round_trip(const IndexedMesh& mesh, const std::string& extension, bo
     NMESH_FUZZ_REQUIRE(back.triangles == mesh.triangles);
     for (std::size_t i = 0; i < mesh.positions.size(); ++i)
         NMESH_FUZZ_REQUIRE(same_bits(back.positions[i], mesh.positions[i]));
-    std::remove(path.c_str());
 }
 
 }  // namespace nmesh::fuzz
