@@ -30,8 +30,7 @@ NeuralMesh::NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bound
     }
     if (params_.edge_swap) cloud_index_ = std::make_unique<PointGrid>(points_);
     next_removal_ = std::uint64_t(params_.cec) * mesh_.n_vertices();
-    ring_.reserve(64);
-    new_positions_.reserve(64);
+    grow_scratch(64);
     swap_ring_.reserve(64);
     swap_dm_.reserve(64);
 }
@@ -62,31 +61,38 @@ void NeuralMesh::smooth_neighbourhood(Vertex w) {
     const float an = float(params_.alpha_n);
     if (an == 0.0f) return;
     // w's ring, clockwise: ring_[i] = to(out_[i]) with out_[i + 1] = cw_rotated(out_[i]).
-    ring_.clear();
-    out_.clear();
-    new_positions_.clear();
-    mesh_.for_each_outgoing_cw(w, [&](Halfedge h) {
-        out_.push_back(h);
-        ring_.push_back(mesh_.to(h));
-        new_positions_.push_back(mesh_.position(mesh_.to(h)));
-    });
-    const std::size_t k = ring_.size();
+    // The scratch arrays are written by index (they only grow, to the largest valence seen), so
+    // the hot path has no push_back bookkeeping.
+    std::size_t k = 0;
+    const Halfedge first = mesh_.halfedge(w);
+    Halfedge h = first;
+    do {
+        if (k == ring_.size()) grow_scratch(2 * k + 16);
+        out_[k] = h;
+        const Vertex v = mesh_.to(h);
+        ring_[k] = v;
+        new_positions_[k] = mesh_.position(v);
+        ++k;
+        h = mesh_.cw_rotated(h);
+    } while (h != first);
+    const Vec3* old = new_positions_.data();  // positions before this step (Jacobi update)
+    Vec3* updated = scratch_.data();
     const Vec3 pw = mesh_.position(w);
     for (std::size_t i = 0; i < k; ++i) {
-        const Vec3 p = new_positions_[i];
+        const Vec3 p = old[i];
         // One clockwise pass over ring_[i]'s own ring gives both the Laplacian (eq. 5) and the
         // area-weighted normal (the sum of the cross products of consecutive ring edges). The
         // pass starts at the half-edge to w, whose clockwise predecessor and successor in that
         // ring are w's ring neighbours ring_[i + 1] and ring_[i - 1]: no lookup needed for them.
         const Vec3 a0 = pw - p;
-        const Vec3 a1 = new_positions_[(i + k - 1) % k] - p;
+        const Vec3 a1 = old[i == 0 ? k - 1 : i - 1] - p;
         Vec3 sum = a0 + a1;
-        Vec3 normal = cross(a0, new_positions_[(i + 1) % k] - p) + cross(a1, a0);
+        Vec3 normal = cross(a0, old[i + 1 == k ? 0 : i + 1] - p) + cross(a1, a0);
         Vec3 prev = a1;  // the walk ends at ring_[i + 1], closing the cycle of cross products
         std::uint32_t valence = 2;
         const Halfedge stop = Mesh::twin(out_[i]);  // ring_[i] -> w, where the pass began
-        for (Halfedge h = mesh_.cw_rotated(mesh_.next(out_[i])); h != stop; h = mesh_.cw_rotated(h)) {
-            const Vec3 a = mesh_.position(mesh_.to(h)) - p;
+        for (Halfedge g = mesh_.cw_rotated(mesh_.next(out_[i])); g != stop; g = mesh_.cw_rotated(g)) {
+            const Vec3 a = mesh_.position(mesh_.to(g)) - p;
             sum += a;
             normal += cross(a, prev);
             prev = a;
@@ -96,10 +102,16 @@ void NeuralMesh::smooth_neighbourhood(Vertex w) {
         const float nn = squared_norm(normal);
         const Vec3 tangential = nn > 0.0f ? laplacian - normal * (dot(laplacian, normal) / nn)  // eq. (4)
                                           : laplacian;
-        scratch_.push_back(p + tangential * an);  // eq. (3)
+        updated[i] = p + tangential * an;  // eq. (3)
     }
-    for (std::size_t i = 0; i < k; ++i) set_position(ring_[i], scratch_[i]);
-    scratch_.clear();
+    for (std::size_t i = 0; i < k; ++i) set_position(ring_[i], updated[i]);
+}
+
+void NeuralMesh::grow_scratch(std::size_t n) {
+    ring_.resize(n);
+    out_.resize(n);
+    new_positions_.resize(n);
+    scratch_.resize(n);
 }
 
 void NeuralMesh::adapt() {

@@ -55,6 +55,7 @@ private:
     Vertex sample_and_find_winner(Vec3& x);
     void move_winner(Vertex w, const Vec3& x);
     void smooth_neighbourhood(Vertex w);
+    void grow_scratch(std::size_t n);
     float face_deviation(Face f) const;
     float edge_deviation(Halfedge h) const;
     void set_position(Vertex v, const Vec3& p);
