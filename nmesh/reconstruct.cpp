@@ -6,6 +6,7 @@
 #include <string>
 
 #include "nmesh/error.h"
+#include "nmesh/finish.h"
 #include "nmesh/neural_mesh.h"
 
 namespace nmesh {
@@ -172,9 +173,23 @@ Result reconstruct(const PointCloud& cloud, const Parameters& params, const Call
             }
         }
     }
-    result.mesh = norm.to_input(engine.mesh().to_indexed());
+    const double learning_seconds = elapsed();
+    // The finishing stage (nmesh/finish.h), on a copy of the learnt mesh; should it ever fail to
+    // keep the vertex count, the learnt mesh is returned as it is.
+    bool finished = false;
+    if (!result.cancelled && params.finish) {
+        Mesh mesh = engine.mesh();
+        finish_mesh(mesh, norm.points);
+        if (mesh.n_vertices() == engine.mesh().n_vertices()) {
+            result.mesh = norm.to_input(mesh.to_indexed());
+            finished = true;
+        }
+    }
+    if (!finished) result.mesh = norm.to_input(engine.mesh().to_indexed());
     result.stats = engine.stats();
-    result.stats.seconds = elapsed();
+    result.stats.seconds = learning_seconds;
+    result.stats.seconds_finish = params.finish && !result.cancelled ? elapsed() - learning_seconds : 0.0;
+    result.stats.finished = finished;
     if (callbacks.progress && !result.cancelled) report(params.settle > 0.0);
     return result;
 }

@@ -35,6 +35,11 @@ struct Parameters {
     // the last vertices settle onto the surface; in units of the final vertex count n
     // (settle_iterations = settle * n). 0 disables the phase.
     double settle = 0.0;
+    // Choice beyond the paper: the finishing stage of nmesh/finish.h runs once the target size is
+    // reached (angle-improving flips and a tangential relaxation onto the cloud, then the repair
+    // of folds and self-intersections; same vertex count). false gives the paper's plain
+    // algorithm, bit for bit.
+    bool finish = true;
 
     // Throws ParameterError naming the first parameter out of range.
     void validate() const;
@@ -52,7 +57,9 @@ struct Statistics {
     std::uint64_t swaps_kept = 0;        //   kept: the new edge deviates less
     std::uint64_t swaps_undone = 0;      //   undone: it did not
     std::uint64_t swaps_illegal = 0;     //   the worst edge could not be flipped
-    double seconds = 0.0;                // learning time, wall clock
+    double seconds = 0.0;                // learning time, wall clock (normalisation included)
+    double seconds_finish = 0.0;         // the finishing stage (Parameters::finish), wall clock
+    bool finished = false;               // the finishing stage ran and its mesh was returned
     // Time split by phase, filled only when Callbacks::profile is set (timing costs time).
     double seconds_winner = 0.0, seconds_update = 0.0, seconds_split = 0.0,
            seconds_collapse = 0.0, seconds_swap = 0.0;

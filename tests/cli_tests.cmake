@@ -59,7 +59,7 @@ foreach(f mesh.ply mesh_100v.ply mesh_500v.ply stats.json)
   endif()
 endforeach()
 file(READ ${WORK}/stats.json stats)
-foreach(key vertices faces iterations splits collapses swaps_kept seconds seed dm_x_t hausdorff_rel)
+foreach(key vertices faces iterations splits collapses swaps_kept seconds seconds_finish finish seed dm_x_t hausdorff_rel)
   if(NOT stats MATCHES "\"${key}\": ")
     message(SEND_ERROR "stats.json has no key ${key}")
     math(EXPR failures "${failures} + 1")
@@ -72,6 +72,17 @@ expect(info 0 "element vertex: 35947" ${NMESH} info ${DATA})
 expect(info_mesh 0 "faces: 1996" ${NMESH} info ${WORK}/mesh.ply)
 expect(no_edge_swap 0 "0 swaps kept of 0 tried"
   ${NMESH} reconstruct ${DATA} -o ${WORK}/nm.off --vertices 300 --no-edge-swap)
+# The finishing stage runs by default and is reported; --no-finish skips it and changes the mesh.
+expect(finish_default 0 "s learning [^\n]*, [0-9.]+ s finishing\n"
+  ${NMESH} reconstruct ${DATA} -o ${WORK}/finished.ply --vertices 1000)
+expect(no_finish 0 "s learning \\([0-9.]+ M it/s\\)\n"
+  ${NMESH} reconstruct ${DATA} -o ${WORK}/unfinished.ply --vertices 1000 --no-finish)
+file(SHA256 ${WORK}/finished.ply finished_sha)
+file(SHA256 ${WORK}/unfinished.ply unfinished_sha)
+if(finished_sha STREQUAL unfinished_sha)
+  message(SEND_ERROR "--no-finish wrote the same mesh as the default")
+  math(EXPR failures "${failures} + 1")
+endif()
 
 # Pictures.
 expect(render_help 0 "usage: nmesh render" ${NMESH} render --help)

@@ -54,6 +54,7 @@ constexpr const char* kReconstructUsage =
     "  --cvs N                a vertex split every N iterations (default 100)\n"
     "  --cec N                inactive vertices removed every N * n iterations (default 20)\n"
     "  --no-edge-swap         basic Neural Meshes (no edge swap after collapses)\n"
+    "  --no-finish            no finishing stage: the learnt mesh exactly as the paper's algorithm leaves it\n"
     "  --settle X             X * n iterations without topology changes at the end (default 0)\n"
     "  --seed S               random seed; the same seed gives the same mesh (default 1)\n"
     "  --snapshots N1,N2,...  also write the mesh when it reaches these sizes (OUTPUT_<N>v.ext)\n"
@@ -109,14 +110,18 @@ std::string snapshot_path(const std::string& output, std::uint32_t n) {
 
 void print_summary(const Result& r, const std::string& output) {
     const Statistics& s = r.stats;
+    char finishing_text[64] = "";
+    if (s.finished) std::snprintf(finishing_text, sizeof finishing_text, ", %.2f s finishing", s.seconds_finish);
+    const std::string finishing = finishing_text;
     std::fprintf(stderr,
                  "nmesh: wrote %s: %zu vertices, %zu faces\n"
                  "nmesh: %llu iterations, %llu splits, %llu collapses (%llu refused), "
-                 "%llu swaps kept of %llu tried, %.2f s learning (%.1f M it/s)\n",
+                 "%llu swaps kept of %llu tried, %.2f s learning (%.1f M it/s)%s\n",
                  output.c_str(), r.mesh.positions.size(), r.mesh.triangles.size(),
                  (unsigned long long)s.iterations, (unsigned long long)s.splits, (unsigned long long)s.collapses,
                  (unsigned long long)s.collapses_refused, (unsigned long long)s.swaps_kept,
-                 (unsigned long long)s.swaps_tried, s.seconds, s.seconds > 0 ? s.iterations / s.seconds / 1e6 : 0.0);
+                 (unsigned long long)s.swaps_tried, s.seconds, s.seconds > 0 ? s.iterations / s.seconds / 1e6 : 0.0,
+                 finishing.c_str());
 }
 
 // `text` as a JSON string literal: quotes, backslashes and control characters escaped; other
@@ -157,7 +162,7 @@ void write_stats(const std::string& path, const std::string& input, const Parame
           << "  \"parameters\": {\"target_vertices\": " << p.target_vertices << ", \"alpha_w\": " << p.alpha_w
           << ", \"alpha_n\": " << p.alpha_n << ", \"alpha\": " << p.alpha << ", \"cvs\": " << p.cvs
           << ", \"cec\": " << p.cec << ", \"edge_swap\": " << (p.edge_swap ? "true" : "false")
-          << ", \"settle\": " << p.settle << "},\n"
+          << ", \"settle\": " << p.settle << ", \"finish\": " << (p.finish ? "true" : "false") << "},\n"
           << "  \"vertices\": " << r.mesh.positions.size() << ",\n"
           << "  \"faces\": " << r.mesh.triangles.size() << ",\n"
           << "  \"iterations\": " << s.iterations << ",\n"
@@ -170,6 +175,7 @@ void write_stats(const std::string& path, const std::string& input, const Parame
           << "  \"swaps_undone\": " << s.swaps_undone << ",\n"
           << "  \"swaps_illegal\": " << s.swaps_illegal << ",\n"
           << "  \"seconds\": " << s.seconds << ",\n"
+          << "  \"seconds_finish\": " << s.seconds_finish << ",\n"
           << "  \"cancelled\": " << (r.cancelled ? "true" : "false") << ",\n"
           << "  \"metrics\": " << metrics.str() << "\n"
           << "}\n";
@@ -181,7 +187,7 @@ int run_reconstruct(int argc, char** argv) {
         std::fputs(kReconstructUsage, stdout);
         return 0;
     }
-    const Arguments args(argc, argv, 2, {"--no-edge-swap", "--quiet", "--ascii", "--save-on-interrupt"},
+    const Arguments args(argc, argv, 2, {"--no-edge-swap", "--no-finish", "--quiet", "--ascii", "--save-on-interrupt"},
                          {"-o", "--output", "--vertices", "--alpha-w", "--alpha-n", "--alpha", "--cvs", "--cec",
                           "--seed", "--snapshots", "--stats", "--settle"});
     if (args.positional().size() != 1) throw UsageError("reconstruct takes one INPUT file");
@@ -220,6 +226,7 @@ int run_reconstruct(int argc, char** argv) {
     p.settle = args.number("--settle", p.settle);
     p.seed = args.count("--seed", p.seed);
     p.edge_swap = !args.has("--no-edge-swap");
+    p.finish = !args.has("--no-finish");
     try {
         p.validate();
     } catch (const ParameterError& e) {

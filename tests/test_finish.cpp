@@ -1,0 +1,407 @@
+// The finishing stage (nmesh/finish.h): each pass on constructed cases where its effect is known,
+// the repair's all-or-nothing rule, and the whole stage on real reconstructions (closed
+// manifold, exact vertex count, never more self-intersections than the learnt mesh).
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <utility>
+
+#include "cloud_fixtures.h"
+#include "mesh_fixtures.h"
+#include "nmesh/finish.h"
+#include "nmesh/mesh.h"
+#include "nmesh/mesh_check.h"
+#include "nmesh/metrics.h"
+#include "nmesh/neural_mesh.h"
+#include "nmesh/random.h"
+#include "nmesh/reconstruct.h"
+
+using namespace nmesh;
+using nmesh::test::icosahedron;
+using nmesh::test::shared_bunny;
+using nmesh::test::sphere_cloud;
+
+namespace {
+
+// The icosahedron subdivided `levels` times (each triangle into four), on the unit sphere:
+// 12 vertices of valence 5, the others of valence 6, nearly equilateral triangles.
+IndexedMesh icosphere(int levels) {
+    const Mesh ico = icosahedron();
+    IndexedMesh m = ico.to_indexed();
+    for (int l = 0; l < levels; ++l) {
+        std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mid;
+        auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
+            const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+            const auto it = mid.find(key);
+            if (it != mid.end()) return it->second;
+            m.positions.push_back(normalized((m.positions[a] + m.positions[b]) * 0.5f));
+            return mid[key] = std::uint32_t(m.positions.size() - 1);
+        };
+        std::vector<std::array<std::uint32_t, 3>> faces;
+        for (const auto& t : m.triangles) {
+            const std::uint32_t a = midpoint(t[0], t[1]), b = midpoint(t[1], t[2]), c = midpoint(t[2], t[0]);
+            faces.push_back({t[0], a, c});
+            faces.push_back({t[1], b, a});
+            faces.push_back({t[2], c, b});
+            faces.push_back({a, b, c});
+        }
+        m.triangles = faces;
+    }
+    return m;
+}
+
+// Five vertices: a flat rhombus A B C D on top (split along its long diagonal A-C, so that the
+// angles at B and D are about 157 degrees: not Delaunay) and an apex E below. With `fold_deg`,
+// D is lifted so that the triangle A C D turns by that angle about A-C.
+Mesh rhombus_pillow(float fold_deg = 0.0f) {
+    const float t = fold_deg * 3.14159265f / 180.0f;
+    IndexedMesh m;
+    m.positions = {{-1, 0, 0}, {0, -0.2f, 0}, {1, 0, 0}, {0, 0.2f * std::cos(t), 0.2f * std::sin(t)}, {0, 0, -1}};
+    m.triangles = {{0, 1, 2}, {0, 2, 3}, {1, 0, 4}, {2, 1, 4}, {3, 2, 4}, {0, 3, 4}};
+    return Mesh::from_indexed(m);
+}
+
+double smallest_angle(const Mesh& mesh) {
+    double worst = 180.0;
+    for (std::uint32_t f = 0; f < mesh.face_capacity(); ++f) {
+        if (mesh.is_removed(Face(f))) continue;
+        const Halfedge h = mesh.halfedge(Face(f));
+        worst = std::min(worst, min_angle_deg(mesh.position(mesh.from(h)), mesh.position(mesh.to(h)),
+                                              mesh.position(mesh.to(mesh.next(h)))));
+    }
+    return worst;
+}
+
+// Intersecting pairs by brute force over all pairs of faces, with the metrics' rule.
+std::size_t brute_force_pairs(const IndexedMesh& m) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < m.triangles.size(); ++i)
+        for (std::size_t j = i + 1; j < m.triangles.size(); ++j) {
+            const auto &u = m.triangles[i], &v = m.triangles[j];
+            bool shared = false;
+            for (const std::uint32_t a : u)
+                for (const std::uint32_t b : v) shared = shared || a == b;
+            if (shared) continue;
+            const auto& x = m.positions;
+            n += triangles_intersect(x[u[0]], x[u[1]], x[u[2]], x[v[0]], x[v[1]], x[v[2]]);
+        }
+    return n;
+}
+
+// An icosphere with one vertex pushed through the sphere and out the other side: its triangles cross
+// those around the opposite point.
+Mesh pierced_sphere() {
+    IndexedMesh m = icosphere(2);
+    m.positions[0] = m.positions[0] * -1.3f;
+    return Mesh::from_indexed(m);
+}
+
+// A reconstruction without the stage, as a half-edge mesh.
+Mesh learnt_mesh(const PointCloud& cloud, Parameters p) {
+    p.finish = false;
+    return Mesh::from_indexed(reconstruct(cloud, p).mesh);
+}
+
+void require_valid(const Mesh& m) {
+    const ManifoldCheck c = check_manifold(m);
+    INFO(c.error);
+    REQUIRE(c.ok);
+}
+
+}  // namespace
+
+// ---- flips ----------------------------------------------------------------------------------------
+
+TEST_CASE("the flip pass turns a non-Delaunay pair and raises its smallest angle") {
+    Mesh m = rhombus_pillow();
+    const double before = smallest_angle(m);
+    CHECK(flip_to_delaunay(m) == 1);
+    require_valid(m);
+    // The diagonal is now B-D: both top triangles are (B, C, D) and (D, A, B), much rounder.
+    CHECK(m.find_halfedge(Vertex(1), Vertex(3)).valid());
+    CHECK_FALSE(m.find_halfedge(Vertex(0), Vertex(2)).valid());
+    CHECK(smallest_angle(m) > before);
+    CHECK(min_angle_deg(m.position(Vertex(1)), m.position(Vertex(2)), m.position(Vertex(3))) > 20.0);
+    // Done: a second pass finds nothing.
+    CHECK(flip_to_delaunay(m) == 0);
+}
+
+TEST_CASE("the flip pass does not cut across a ridge") {
+    Mesh m = rhombus_pillow(40.0f);  // the same pair, folded by 40 degrees about A-C
+    const Mesh before = m;
+    CHECK(flip_to_delaunay(m, 20.0f) == 0);
+    CHECK(m.same_arrays(before));
+    // Allowed when the limit is above the fold.
+    CHECK(flip_to_delaunay(m, 50.0f) == 1);
+    require_valid(m);
+}
+
+TEST_CASE("the flip pass leaves a Delaunay mesh alone") {
+    Mesh m = Mesh::from_indexed(icosphere(2));
+    const Mesh before = m;
+    CHECK(flip_to_delaunay(m) == 0);
+    CHECK(m.same_arrays(before));
+}
+
+// ---- relaxation -----------------------------------------------------------------------------------
+
+TEST_CASE("tangential relaxation keeps a regular mesh where it is") {
+    Mesh m = icosahedron();
+    const Mesh before = m;
+    relax_tangentially(m);
+    for (std::uint32_t v = 0; v < m.vertex_capacity(); ++v)
+        CHECK(distance(m.position(Vertex(v)), before.position(Vertex(v))) < 1e-6f);
+}
+
+TEST_CASE("tangential relaxation evens out the triangles and keeps them on the surface") {
+    // An icosphere whose vertices slid along the sphere by up to a third of an edge.
+    IndexedMesh im = icosphere(3);
+    Random rng(5);
+    for (Vec3& p : im.positions) {
+        const Vec3 d{float(rng.uniform() - 0.5), float(rng.uniform() - 0.5), float(rng.uniform() - 0.5)};
+        p = normalized(p + (d - p * dot(d, p)) * 0.1f);
+    }
+    Mesh m = Mesh::from_indexed(im);
+    auto area_spread = [](const Mesh& mesh) {
+        double lo = 1e30, hi = 0.0;
+        for (std::uint32_t f = 0; f < mesh.face_capacity(); ++f) {
+            lo = std::min(lo, double(mesh.face_area(Face(f))));
+            hi = std::max(hi, double(mesh.face_area(Face(f))));
+        }
+        return hi / lo;
+    };
+    auto off_sphere = [](const Mesh& mesh) {
+        float worst = 0.0f;
+        for (std::uint32_t v = 0; v < mesh.vertex_capacity(); ++v)
+            worst = std::max(worst, std::fabs(norm(mesh.position(Vertex(v))) - 1.0f));
+        return worst;
+    };
+    const double spread_before = area_spread(m), angle_before = smallest_angle(m);
+    const PointCloud cloud = sphere_cloud(20000);
+    const CloudSurface surface(cloud.points, m);
+    for (int i = 0; i < 5; ++i) relax_tangentially(m, &surface);
+    require_valid(m);
+    INFO("area max/min " << spread_before << " -> " << area_spread(m) << ", smallest angle " << angle_before << " -> "
+                         << smallest_angle(m) << ", off the sphere " << off_sphere(m));
+    CHECK(area_spread(m) < 0.6 * spread_before);
+    CHECK(smallest_angle(m) > angle_before);
+    CHECK(off_sphere(m) < 0.01f);  // edges are about 0.15 long
+}
+
+TEST_CASE("the pull towards the cloud ignores points facing the other way or out of reach") {
+    // A cloud on the plane z = 0 whose normals (from a flat mesh facing +z) point up.
+    std::vector<Vec3> points;
+    for (int i = -5; i <= 5; ++i)
+        for (int j = -5; j <= 5; ++j) points.push_back({0.1f * float(i), 0.1f * float(j), 0.0f});
+    IndexedMesh sheet;
+    sheet.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, {0, 0, -1}};
+    sheet.triangles = {{0, 1, 2}, {1, 0, 3}, {2, 1, 3}, {0, 2, 3}};
+    const Mesh mesh = Mesh::from_indexed(sheet);
+    const CloudSurface surface(points, mesh);
+    const Vec3 q{0.02f, 0.01f, 0.3f}, up{0, 0, 1};
+    CHECK(surface.pull(q, up, 1.0f, 1.0f).z == doctest::Approx(0.0f));   // onto the plane
+    CHECK(surface.pull(q, up, 0.1f, 1.0f).z == doctest::Approx(0.2f));   // by at most the limit
+    CHECK(surface.pull(q, -up, 1.0f, 1.0f) == q);                        // facing the other way
+    CHECK(surface.pull(q, up, 1.0f, 0.1f) == q);                         // out of reach
+}
+
+// ---- detection ------------------------------------------------------------------------------------
+
+TEST_CASE("self-intersections found by the grid are those of a brute-force search and of the metrics") {
+    const Mesh clean = Mesh::from_indexed(icosphere(2));
+    CHECK(find_self_intersections(clean).empty());
+    CHECK(find_folded_edges(clean).empty());
+    const Mesh pierced = pierced_sphere();
+    const auto pairs = find_self_intersections(pierced);
+    const IndexedMesh im = pierced.to_indexed();
+    CHECK(pairs.size() > 0);
+    CHECK(pairs.size() == brute_force_pairs(im));
+    CHECK(pairs.size() == evaluate(std::vector<Vec3>{{0, 0, 0}}, im).self_intersections);
+    for (const auto& [f, g] : pairs) CHECK(f < g);
+    CHECK(std::is_sorted(pairs.begin(), pairs.end()));
+}
+
+TEST_CASE("a vertex pushed across its ring makes folded edges") {
+    IndexedMesh im = icosphere(2);
+    // Vertex 0's ring lies around it on the sphere, edges about 0.3 long; moving it along the
+    // sphere by twice that takes it past the ring and turns its triangles over.
+    const Vec3 p = im.positions[0], dir{1, 0.3f, 0};
+    im.positions[0] = p + normalized(dir - p * dot(dir, p)) * 0.6f;
+    const Mesh m = Mesh::from_indexed(im);
+    CHECK(find_folded_edges(m, 120.0f).size() > 0);
+}
+
+TEST_CASE("an edge split keeps the surface and adds one vertex of valence 4") {
+    Mesh m = Mesh::from_indexed(icosphere(1));
+    const IndexedMesh before = m.to_indexed();
+    double area_before = 0.0;
+    for (std::uint32_t f = 0; f < m.face_capacity(); ++f) area_before += m.face_area(Face(f));
+    const Halfedge h = m.halfedge(Vertex(3));
+    const Vec3 mid = (m.position(m.from(h)) + m.position(m.to(h))) * 0.5f;
+    const Vertex a = split_edge(m, h);
+    require_valid(m);
+    CHECK(m.n_vertices() == before.positions.size() + 1);
+    CHECK(m.valence(a) == 4);
+    CHECK(m.position(a) == mid);
+    double area_after = 0.0;
+    for (std::uint32_t f = 0; f < m.face_capacity(); ++f)
+        if (!m.is_removed(Face(f))) area_after += m.face_area(Face(f));
+    CHECK(area_after == doctest::Approx(area_before).epsilon(1e-5));
+    CHECK(find_folded_edges(m, 60.0f).empty());  // the new triangles lie in the old ones
+}
+
+// ---- repair ---------------------------------------------------------------------------------------
+
+TEST_CASE("the repair removes a constructed self-intersection and keeps the vertex count") {
+    Mesh m = pierced_sphere();
+    const std::uint32_t n = m.n_vertices();
+    const RepairResult r = repair_folds_and_intersections(m);
+    INFO("rounds " << r.rounds);
+    CHECK(r.intersecting_pairs_before > 0);
+    CHECK_FALSE(r.reverted);
+    CHECK(r.intersecting_pairs == 0);
+    CHECK(r.folded_edges == 0);
+    require_valid(m);
+    CHECK(m.n_vertices() == n);
+    CHECK(find_self_intersections(m).empty());
+    CHECK(brute_force_pairs(m.to_indexed()) == 0);
+    CHECK(find_folded_edges(m).empty());
+}
+
+TEST_CASE("the repair unfolds a vertex pushed across its ring") {
+    IndexedMesh im = icosphere(2);
+    im.positions[7] = normalized(im.positions[7] + Vec3{0.25f, -0.2f, 0.1f});
+    Mesh m = Mesh::from_indexed(im);
+    REQUIRE(find_folded_edges(m).size() + find_self_intersections(m).size() > 0);
+    const RepairResult r = repair_folds_and_intersections(m);
+    CHECK_FALSE(r.reverted);
+    require_valid(m);
+    CHECK(m.n_vertices() == im.positions.size());
+    CHECK(find_folded_edges(m).empty());
+    CHECK(find_self_intersections(m).empty());
+}
+
+TEST_CASE("the repair leaves a clean mesh untouched") {
+    Mesh m = Mesh::from_indexed(icosphere(2));
+    const Mesh before = m;
+    const RepairResult r = repair_folds_and_intersections(m);
+    CHECK(r.rounds == 0);
+    CHECK_FALSE(r.reverted);
+    CHECK(m.same_arrays(before));
+}
+
+TEST_CASE("a repair that does not succeed gives the mesh back unchanged") {
+    // A flattened sphere: its two sheets coincide, every triangle touches the other sheet, and
+    // two rounds cannot undo that.
+    IndexedMesh im = icosphere(2);
+    for (Vec3& p : im.positions) p.z = 0.0f;
+    Mesh m = Mesh::from_indexed(im);
+    const Mesh before = m;
+    const RepairResult r = repair_folds_and_intersections(m, 2);
+    CHECK(r.intersecting_pairs_before > 0);
+    CHECK(r.reverted);
+    CHECK(r.intersecting_pairs == r.intersecting_pairs_before);
+    CHECK(m.same_arrays(before));
+}
+
+// ---- the stage ------------------------------------------------------------------------------------
+
+TEST_CASE("a flat cloud is left alone") {
+    std::vector<Vec3> flat;
+    Random rng(3);
+    for (int i = 0; i < 500; ++i) flat.push_back({float(rng.uniform()), float(rng.uniform()), 0.5f});
+    CHECK(is_flat(flat));
+    CHECK_FALSE(is_flat(sphere_cloud(500).points));
+    IndexedMesh im = icosphere(1);
+    for (Vec3& p : im.positions) p.z = 0.5f;
+    Mesh m = Mesh::from_indexed(im);
+    const Mesh before = m;
+    const FinishReport r = finish_mesh(m, flat);
+    CHECK(r.skipped_flat);
+    CHECK(m.same_arrays(before));
+}
+
+TEST_CASE("the stage keeps a closed manifold with the same vertex count on several meshes") {
+    struct Case {
+        const char* name;
+        PointCloud cloud;
+        Mesh mesh;
+    };
+    std::vector<Case> cases;
+    {
+        const PointCloud sphere = sphere_cloud(20000);
+        Parameters p;
+        p.target_vertices = 2000;
+        cases.push_back({"sphere, 2000 vertices", sphere, learnt_mesh(sphere, p)});
+        cases.push_back({"pierced icosphere", sphere_cloud(5000), pierced_sphere()});
+    }
+    const PointCloud bunny = shared_bunny();
+    REQUIRE(bunny.size() == 35947);
+    {
+        Parameters p;
+        p.target_vertices = 3000;
+        cases.push_back({"bunny, 3000 vertices", bunny, learnt_mesh(bunny, p)});
+        p.alpha_w = 0.01;  // the paper's worst setting
+        p.alpha_n = 0.002;
+        cases.push_back({"bunny, 3000 vertices, worst setting", bunny, learnt_mesh(bunny, p)});
+    }
+    for (Case& c : cases) {
+        INFO(c.name);
+        const std::uint32_t n = c.mesh.n_vertices();
+        const std::size_t pairs_before = find_self_intersections(c.mesh).size();
+        const FinishReport r = finish_mesh(c.mesh, c.cloud.points);
+        require_valid(c.mesh);
+        CHECK(c.mesh.n_vertices() == n);
+        const std::size_t pairs_after = find_self_intersections(c.mesh).size();
+        INFO("pairs " << pairs_before << " -> " << pairs_after << ", repair rounds " << r.repair_rounds);
+        CHECK(pairs_after <= pairs_before);
+        CHECK(pairs_after == r.intersecting_pairs_after);
+    }
+}
+
+TEST_CASE("with the stage off, reconstruct gives the learning engine's mesh bit for bit") {
+    // A cloud whose bounding box is centred on the origin with a diagonal in [0.5, 1): the
+    // normalisation is then the identity, and the engine can be run on the cloud as it is.
+    PointCloud cloud = sphere_cloud(3000, 0.2f);
+    for (const Vec3& e : {Vec3{0.25f, 0, 0}, Vec3{-0.25f, 0, 0}, Vec3{0, 0.25f, 0}, Vec3{0, -0.25f, 0},
+                          Vec3{0, 0, 0.25f}, Vec3{0, 0, -0.25f}})
+        cloud.points.push_back(e);
+    Parameters p;
+    p.target_vertices = 300;
+    p.finish = false;
+    const Result r = reconstruct(cloud, p);
+    NeuralMesh engine(cloud.points, cloud.bounds(), p);
+    while (engine.mesh().n_vertices() < p.target_vertices) engine.iterate();
+    const IndexedMesh direct = engine.mesh().to_indexed();
+    CHECK(r.mesh.triangles == direct.triangles);
+    REQUIRE(r.mesh.positions.size() == direct.positions.size());
+    CHECK(std::equal(r.mesh.positions.begin(), r.mesh.positions.end(), direct.positions.begin()));
+    // With the stage (the default) the mesh differs, with the same vertex count.
+    p.finish = true;
+    const Result finished = reconstruct(cloud, p);
+    CHECK(finished.mesh.positions.size() == 300);
+    CHECK_FALSE(finished.mesh.triangles == direct.triangles);
+}
+
+TEST_CASE("the finished bunny is a closed manifold without self-intersections or many thin triangles") {
+    const PointCloud bunny = shared_bunny();
+    REQUIRE(bunny.size() == 35947);
+    Parameters p;
+    p.target_vertices = 5000;
+    const Result r = reconstruct(bunny, p);
+    require_valid(Mesh::from_indexed(r.mesh));
+    CHECK(r.mesh.positions.size() == 5000);
+    const QualityReport q = evaluate(bunny.points, r.mesh);
+    std::printf("bunny 5k finished: DM %.6f, %.2f%% under 10 degrees, %zu self-intersections, p2s %.4f%%\n", q.dm_x_t,
+                100 * q.share_under_10deg, q.self_intersections, 100 * q.p2s_mean_rel);
+    CHECK(q.self_intersections == 0);
+    CHECK(q.share_under_10deg < 0.01);
+    CHECK(q.genus == 0);
+    // The same seed gives the same bytes with the stage too.
+    const Result again = reconstruct(bunny, p);
+    CHECK(again.mesh.triangles == r.mesh.triangles);
+    CHECK(std::equal(again.mesh.positions.begin(), again.mesh.positions.end(), r.mesh.positions.begin()));
+}
