@@ -11,7 +11,7 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
 cmake --build build -j 2 --target bench_reconstruct > /dev/null
 mkdir -p bench/results
 csv=bench/results/bunny.csv
-echo "points,vertices,edge_swap,runs,median_s,min_s,max_s,median_iterations_per_s,winner_pct,update_pct,split_pct,collapse_pct,swap_pct" > "$csv"
+echo "points,vertices,edge_swap,runs,median_s,min_s,max_s,median_iterations_per_s,winner_pct,update_pct,split_pct,collapse_pct,swap_pct,median_finish_s" > "$csv"
 out=$(mktemp)
 for swap in "" "--no-edge-swap"; do
   ./build/bench/bench_reconstruct examples/data/bunny.ply --vertices 30000 --runs "$runs" $swap --csv "$csv" | tee -a "$out"
