@@ -13,18 +13,12 @@
 #include "nmesh/error.h"
 #include "nmesh/point_reader.h"
 #include "nmesh/reconstruct.h"
+#include "summary.h"
 
 namespace {
 
-struct Summary {
-    double median = 0, min = 0, max = 0;
-};
-
-Summary summarize(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return {n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]), v.front(), v.back()};
-}
+using nmesh::bench::Summary;
+using nmesh::bench::summarize;
 
 }  // namespace
 

@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "nmesh/error.h"
@@ -20,6 +21,7 @@
 #include "nmesh/metrics.h"
 #include "nmesh/point_reader.h"
 #include "nmesh/reconstruct.h"
+#include "summary.h"
 
 namespace {
 
@@ -43,11 +45,7 @@ Run run_once(const nmesh::PointCloud& cloud, const nmesh::Parameters& p) {
     return out;
 }
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+double median(std::vector<double> v) { return nmesh::bench::summarize(std::move(v)).median; }
 
 struct Cell {
     double alpha_w, alpha_n;

@@ -26,6 +26,13 @@ macro(fail msg)
   math(EXPR failures "${failures} + 1")
 endmacro()
 
+# Inside a function: hands the check counters back to the caller.
+macro(return_counts)
+  set(failures ${failures} PARENT_SCOPE)
+  set(passes ${passes} PARENT_SCOPE)
+  set(known ${known} PARENT_SCOPE)
+endmacro()
+
 # verdict(NAME OK MESSAGE): count a check, honouring KNOWN_BUGS.
 function(verdict name ok msg)
   if(name IN_LIST KNOWN_BUGS)
@@ -42,9 +49,7 @@ function(verdict name ok msg)
     message(SEND_ERROR "${name}: ${msg}")
     math(EXPR failures "${failures} + 1")
   endif()
-  set(failures ${failures} PARENT_SCOPE)
-  set(passes ${passes} PARENT_SCOPE)
-  set(known ${known} PARENT_SCOPE)
+  return_counts()
 endfunction()
 
 # check(NAME MESSAGE CONDITION...): count a check passing when if(CONDITION) holds; variables in
@@ -55,9 +60,7 @@ function(check _c_name _c_msg)
   else()
     verdict(${_c_name} FALSE "${_c_msg}")
   endif()
-  set(failures ${failures} PARENT_SCOPE)
-  set(passes ${passes} PARENT_SCOPE)
-  set(known ${known} PARENT_SCOPE)
+  return_counts()
 endfunction()
 
 # expect(NAME STATUS REGEX COMMAND...): run COMMAND (at most 120 s); its exit status must be
@@ -73,9 +76,7 @@ function(expect name status regex)
   else()
     verdict(${name} TRUE "")
   endif()
-  set(failures ${failures} PARENT_SCOPE)
-  set(passes ${passes} PARENT_SCOPE)
-  set(known ${known} PARENT_SCOPE)
+  return_counts()
 endfunction()
 
 # bad_file(NAME REGEX): `nmesh reconstruct` and `nmesh info` on ${WORK}/NAME both exit with 1 and
@@ -90,9 +91,7 @@ function(bad_file name regex)
     fail("${name}: a failed run left out.ply behind")
     file(REMOVE ${WORK}/out.ply)
   endif()
-  set(failures ${failures} PARENT_SCOPE)
-  set(passes ${passes} PARENT_SCOPE)
-  set(known ${known} PARENT_SCOPE)
+  return_counts()
 endfunction()
 
 file(SHA256 ${DATA} data_sha_before)

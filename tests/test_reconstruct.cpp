@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "cloud_fixtures.h"
+#include "engine_checks.h"
 #include "nmesh/error.h"
 #include "nmesh/mesh.h"
 #include "nmesh/mesh_check.h"
@@ -65,12 +66,7 @@ TEST_CASE("the engine keeps mesh, grid and activity index consistent through eve
         if (s.splits != last_splits || s.removal_passes != last_passes) {
             last_splits = s.splits;
             last_passes = s.removal_passes;
-            const ManifoldCheck c = check_manifold(engine.mesh());
-            INFO(c.error);
-            REQUIRE(c.ok);
-            const std::string consistency = engine.check_consistency();
-            INFO(consistency);
-            REQUIRE(consistency.empty());
+            nmesh::test::require_engine_valid(engine);
             ++checks;
         }
     }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cloud_fixtures.h"
+#include "engine_checks.h"
 #include "nmesh/error.h"
 #include "nmesh/mesh.h"
 #include "nmesh/mesh_check.h"
@@ -306,12 +307,7 @@ TEST_CASE("long run: a mesh grown to 200,000 vertices stays a valid manifold all
             ++checks;
         }
     }
-    const ManifoldCheck c = check_manifold(engine.mesh());
-    INFO(c.error);
-    REQUIRE(c.ok);
-    const std::string consistency = engine.check_consistency();
-    INFO(consistency);
-    REQUIRE(consistency.empty());
+    nmesh::test::require_engine_valid(engine);
     CHECK(checks >= target * p.cvs / check_period);  // at least one check per check_period / Cvs splits
 
     // Every vertex on the ellipsoid: (x/a)^2 + (y/b)^2 + (z/c)^2 close to 1.
