@@ -2,6 +2,7 @@
 // it, plus the edge swap of section 4. Where the papers leave a choice open, the choice is named
 // "Choice:" here and listed in README.md.
 #include "nmesh/neural_mesh.h"
+#include "nmesh/prefetch.h"
 
 #include <algorithm>
 #include <cassert>
@@ -13,6 +14,41 @@ namespace nmesh {
 namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+}  // namespace
+
+namespace {
+// Four float lanes (x, y, z and an unused one) for the smoothing loop: one SIMD instruction per
+// operation where the compiler offers vector types (GCC, Clang), plain lanes elsewhere. Each lane
+// computes exactly what the Vec3 operations compute, in the same order: the same bits, only
+// fewer instructions.
+#if defined(__GNUC__) || defined(__clang__)
+typedef float F4 __attribute__((vector_size(16)));
+typedef int I4 __attribute__((vector_size(16)));
+inline F4 load(const Vec3& p) { return F4{p.x, p.y, p.z, 0.0f}; }
+// The lanes rotated: (y, z, x, w) and (z, x, y, w).
+#if defined(__clang__)
+inline F4 yzx(F4 a) { return __builtin_shufflevector(a, a, 1, 2, 0, 3); }
+inline F4 zxy(F4 a) { return __builtin_shufflevector(a, a, 2, 0, 1, 3); }
+#else
+inline F4 yzx(F4 a) { return __builtin_shuffle(a, I4{1, 2, 0, 3}); }
+inline F4 zxy(F4 a) { return __builtin_shuffle(a, I4{2, 0, 1, 3}); }
+#endif
+inline F4 cross(F4 a, F4 b) { return yzx(a) * zxy(b) - zxy(a) * yzx(b); }
+#else
+struct F4 {
+    float v[4];
+    float operator[](int i) const { return v[i]; }
+};
+inline F4 load(const Vec3& p) { return {{p.x, p.y, p.z, 0.0f}}; }
+inline F4 operator+(F4 a, F4 b) { return {{a.v[0] + b.v[0], a.v[1] + b.v[1], a.v[2] + b.v[2], 0.0f}}; }
+inline F4 operator-(F4 a, F4 b) { return {{a.v[0] - b.v[0], a.v[1] - b.v[1], a.v[2] - b.v[2], 0.0f}}; }
+inline F4 operator*(F4 a, float s) { return {{a.v[0] * s, a.v[1] * s, a.v[2] * s, 0.0f}}; }
+inline F4 cross(F4 a, F4 b) {
+    return {{a.v[1] * b.v[2] - a.v[2] * b.v[1], a.v[2] * b.v[0] - a.v[0] * b.v[2], a.v[0] * b.v[1] - a.v[1] * b.v[0], 0.0f}};
+}
+#endif
+inline Vec3 to_vec3(F4 a) { return {a[0], a[1], a[2]}; }
+inline float dot(F4 a, F4 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 }  // namespace
 
 NeuralMesh::NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bounds, const Parameters& params)
@@ -30,7 +66,12 @@ NeuralMesh::NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bound
     }
     if (params_.edge_swap) cloud_index_ = std::make_unique<PointGrid>(points_);
     next_removal_ = std::uint64_t(params_.cec) * mesh_.n_vertices();
-    grow_scratch(64);
+    for (std::uint32_t& a : ahead_) a = rng_.below(std::uint32_t(points_.size()));
+    ring_.reserve(64);
+    ring2_.reserve(64);
+    updated_.resize(16);
+    rings_.reserve(params.target_vertices + 16);
+    for (std::uint32_t v = 0; v < 4; ++v) rings_.refresh(mesh_, Vertex(v));
     swap_ring_.reserve(64);
     swap_dm_.reserve(64);
 }
@@ -40,16 +81,35 @@ void NeuralMesh::set_position(Vertex v, const Vec3& p) {
     grid_.move(v.idx, p);
 }
 
-// Steps 1-2: a random sample x and the vertex nearest to it, eq. (1).
-Vertex NeuralMesh::sample_and_find_winner(Vec3& x) {
-    x = points_[rng_.below(std::uint32_t(points_.size()))];
-    return Vertex(grid_.nearest(x));
+// Step 1: a random sample x from the cloud.
+// The samples are drawn two iterations ahead (the sequence is the same; only the time of the draw
+// moves) and the one after next is prefetched, so that it is in the cache when its turn comes.
+const Vec3& NeuralMesh::next_sample() {
+    const Vec3& x = points_[ahead_[0]];
+    ahead_[0] = ahead_[1];
+    ahead_[1] = rng_.below(std::uint32_t(points_.size()));
+    prefetch_for_read(&points_[ahead_[1]]);
+    return x;
 }
 
 // Step 3, eq. (2): v'_w = (1 - alpha_w) v_w + alpha_w x.
 void NeuralMesh::move_winner(Vertex w, const Vec3& x) {
     const float aw = float(params_.alpha_w);
     set_position(w, mesh_.position(w) * (1.0f - aw) + x * aw);
+}
+
+// v's neighbours, clockwise: from the ring cache, or walked on the mesh into `scratch` when v has
+// more neighbours than the cache holds (then `scratch` grows to the largest valence seen).
+inline const std::uint32_t* NeuralMesh::ring_of(Vertex v, std::vector<std::uint32_t>& scratch, std::uint32_t& count) {
+    count = rings_.count(v);
+    return count != 0 ? rings_.neighbours(v) : walk_ring(v, scratch, count);
+}
+
+const std::uint32_t* NeuralMesh::walk_ring(Vertex v, std::vector<std::uint32_t>& scratch, std::uint32_t& count) {
+    scratch.clear();
+    mesh_.for_each_outgoing_cw(v, [&](Halfedge h) { scratch.push_back(mesh_.to(h).idx); });
+    count = std::uint32_t(scratch.size());
+    return scratch.data();
 }
 
 // Step 4, eq. (3)-(5): tangential Laplacian smoothing of the winner's one-ring.
@@ -60,77 +120,64 @@ void NeuralMesh::move_winner(Vertex w, const Vec3& x) {
 void NeuralMesh::smooth_neighbourhood(Vertex w) {
     const float an = float(params_.alpha_n);
     if (an == 0.0f) return;
-    // w's ring, clockwise: ring_[i] = to(out_[i]) with out_[i + 1] = cw_rotated(out_[i]).
-    // The scratch arrays are written by index (they only grow, to the largest valence seen), so
-    // the hot path has no push_back bookkeeping.
-    std::size_t k = 0;
-    const Halfedge first = mesh_.halfedge(w);
-    Halfedge h = first;
-    do {
-        if (k == ring_.size()) grow_scratch(2 * k + 16);
-        out_[k] = h;
-        const Vertex v = mesh_.to(h);
-        ring_[k] = v;
-        new_positions_[k] = mesh_.position(v);
-        ++k;
-        h = mesh_.cw_rotated(h);
-    } while (h != first);
-    const Vec3* old = new_positions_.data();  // positions before this step (Jacobi update)
-    Vec3* updated = scratch_.data();
-    const Vec3 pw = mesh_.position(w);
-    for (std::size_t i = 0; i < k; ++i) {
-        const Vec3 p = old[i];
-        // One clockwise pass over ring_[i]'s own ring gives both the Laplacian (eq. 5) and the
-        // area-weighted normal (the sum of the cross products of consecutive ring edges). The
-        // pass starts at the half-edge to w, whose clockwise predecessor and successor in that
-        // ring are w's ring neighbours ring_[i + 1] and ring_[i - 1]: no lookup needed for them.
-        const Vec3 a0 = pw - p;
-        const Vec3 a1 = old[i == 0 ? k - 1 : i - 1] - p;
-        Vec3 sum = a0 + a1;
-        Vec3 normal = cross(a0, old[i + 1 == k ? 0 : i + 1] - p) + cross(a1, a0);
-        Vec3 prev = a1;  // the walk ends at ring_[i + 1], closing the cycle of cross products
-        std::uint32_t valence = 2;
-        const Halfedge stop = Mesh::twin(out_[i]);  // ring_[i] -> w, where the pass began
-        for (Halfedge g = mesh_.cw_rotated(mesh_.next(out_[i])); g != stop; g = mesh_.cw_rotated(g)) {
-            const Vec3 a = mesh_.position(mesh_.to(g)) - p;
-            sum += a;
-            normal += cross(a, prev);
+    std::uint32_t k = 0;
+    const std::uint32_t* ring = ring_of(w, ring_, k);
+    if (updated_.size() < k) updated_.resize(k);  // grows to the largest valence seen, then never
+    Vec3* updated = updated_.data();
+    const Vec3* pos = mesh_.positions().data();  // read only until every new position is known
+    const F4 pw = load(pos[w.idx]);
+    for (std::uint32_t i = 0; i < k; ++i) {
+        const std::uint32_t v = ring[i];
+        const F4 p = load(pos[v]);
+        // One pass over v's own ring gives both the Laplacian (eq. 5) and the area-weighted normal
+        // (the sum of the cross products of consecutive ring edges). Clockwise from w, v's ring
+        // reads w, x, ..., y, where x and y are w's ring neighbours on either side of v.
+        std::uint32_t m = 0;
+        const std::uint32_t* r = ring_of(Vertex(v), ring2_, m);
+        std::uint32_t s = 0;
+        while (r[s] != w.idx) ++s;
+        const F4 a0 = pw - p;
+        const F4 a1 = load(pos[r[s + 1 == m ? 0 : s + 1]]) - p;  // x
+        F4 sum = a0 + a1;
+        F4 normal = cross(a0, load(pos[r[s == 0 ? m - 1 : s - 1]]) - p) + cross(a1, a0);  // closes at y
+        F4 prev = a1;
+        std::uint32_t t = s + 2 >= m ? s + 2 - m : s + 2;
+        for (std::uint32_t j = 2; j < m; ++j) {
+            const F4 a = load(pos[r[t]]) - p;
+            sum = sum + a;
+            normal = normal + cross(a, prev);
             prev = a;
-            ++valence;
+            t = t + 1 == m ? 0 : t + 1;
         }
-        const Vec3 laplacian = sum * (1.0f / float(valence));  // eq. (5)
-        const float nn = squared_norm(normal);
-        const Vec3 tangential = nn > 0.0f ? laplacian - normal * (dot(laplacian, normal) / nn)  // eq. (4)
-                                          : laplacian;
-        updated[i] = p + tangential * an;  // eq. (3)
+        const F4 laplacian = sum * (1.0f / float(m));  // eq. (5)
+        const float nn = dot(normal, normal);
+        const F4 tangential = nn > 0.0f ? laplacian - normal * (dot(laplacian, normal) / nn)  // eq. (4)
+                                        : laplacian;
+        updated[i] = to_vec3(p + tangential * an);  // eq. (3)
     }
-    for (std::size_t i = 0; i < k; ++i) set_position(ring_[i], updated[i]);
-}
-
-void NeuralMesh::grow_scratch(std::size_t n) {
-    ring_.resize(n);
-    out_.resize(n);
-    new_positions_.resize(n);
-    scratch_.resize(n);
+    for (std::uint32_t i = 0; i < k; ++i) set_position(Vertex(ring[i]), updated[i]);
 }
 
 void NeuralMesh::adapt() {
     if (profiling_) return adapt_profiled();
-    Vec3 x;
-    const Vertex w = sample_and_find_winner(x);  // steps 1-2
-    move_winner(w, x);                           // step 3
-    smooth_neighbourhood(w);                     // step 4
-    activity_.signal(w.idx);                     // step 5, eq. (6): tau_w += 1
-    activity_.decay();                           // step 6, eq. (7): tau_v *= alpha for all v
+    adapt_to(next_sample());  // step 1
+}
+
+void NeuralMesh::adapt_to(const Vec3& x) {
+    const Vertex w(grid_.nearest(x));  // step 2, eq. (1)
+    move_winner(w, x);                 // step 3
+    smooth_neighbourhood(w);           // step 4
+    activity_.signal(w.idx);           // step 5, eq. (6): tau_w += 1
+    activity_.decay();                 // step 6, eq. (7): tau_v *= alpha for all v
     ++iteration_;
     ++stats_.iterations;
 }
 
 // The same as adapt(), timing the winner search (steps 1-2) and the updates (steps 3-6).
 void NeuralMesh::adapt_profiled() {
-    Vec3 x;
     const auto t0 = Clock::now();
-    const Vertex w = sample_and_find_winner(x);
+    const Vec3 x = next_sample();
+    const Vertex w(grid_.nearest(x));
     const auto t1 = Clock::now();
     move_winner(w, x);
     smooth_neighbourhood(w);
@@ -193,6 +240,8 @@ void NeuralMesh::split_most_active() {
     activity_.set_counter(v.idx, half);
     activity_.add(a.idx, half);
     grid_.insert(a.idx, q);
+    rings_.refresh_around(mesh_, a);  // a's neighbours had v in their rings
+    rings_.refresh_around(mesh_, v);
     ++stats_.splits;
 }
 
@@ -227,6 +276,7 @@ void NeuralMesh::remove_inactive() {
         }
         const Vertex u = mesh_.to(best);
         mesh_.collapse(best);
+        rings_.refresh_around(mesh_, u);  // v's neighbours now have u in their rings
         grid_.remove(vi);
         activity_.remove(vi);
         ++stats_.collapses;
@@ -285,14 +335,23 @@ void NeuralMesh::swap_around(Vertex v) {
         ++stats_.swaps_illegal;
         return;
     }
+    // The four vertices whose rings the flip changes: the edge's ends and the two opposite it.
+    const Vertex ends[4] = {v, mesh_.to(e), mesh_.to(mesh_.next(e)), mesh_.to(mesh_.next(Mesh::twin(e)))};
     const FlipRecord record = mesh_.flip(e);
     ++stats_.swaps_tried;
     if (edge_deviation(e) < worst_dev) {
         ++stats_.swaps_kept;
+        for (const Vertex x : ends) rings_.refresh(mesh_, x);
     } else {
-        mesh_.unflip(record);
+        mesh_.unflip(record);  // every mesh array as before: the cached rings still hold
         ++stats_.swaps_undone;
     }
+}
+
+void NeuralMesh::limit_ring_cache(std::uint32_t n) {
+    rings_.set_limit(n);
+    for (std::uint32_t v = 0; v < mesh_.vertex_capacity(); ++v)
+        if (!mesh_.is_removed(Vertex(v))) rings_.refresh(mesh_, Vertex(v));
 }
 
 std::string NeuralMesh::check_consistency() const {
@@ -314,6 +373,8 @@ std::string NeuralMesh::check_consistency() const {
             return err.str();
         }
     }
+    const std::string rings = rings_.check(mesh_);
+    if (!rings.empty()) return "ring cache: " + rings;
     if (grid_.size() != alive || activity_.size() != alive) {
         err << "sizes differ: mesh " << alive << ", grid " << grid_.size() << ", activity " << activity_.size();
         return err.str();

@@ -1,7 +1,7 @@
 // nmesh/neural_mesh.h — the learning engine: the Neural Meshes algorithm (steps 1-9 of section 3
 // of the Neural Meshes ES paper) and the edge swap of section 4, on the parts built for it:
-// the half-edge Mesh, the VertexGrid (winner search), the ActivityIndex (signal counters) and,
-// for the edge swap, a PointGrid over the cloud.
+// the half-edge Mesh, the VertexGrid (winner search), the ActivityIndex (signal counters), the
+// RingCache (the one-rings the smoothing reads) and, for the edge swap, a PointGrid over the cloud.
 //
 // Most callers want reconstruct() (nmesh/reconstruct.h), which normalises the cloud, runs this
 // engine and maps the mesh back. The engine is public so tests can drive it step by step.
@@ -16,6 +16,7 @@
 #include "nmesh/point_grid.h"
 #include "nmesh/random.h"
 #include "nmesh/reconstruct.h"
+#include "nmesh/ring_cache.h"
 #include "nmesh/vertex_grid.h"
 
 namespace nmesh {
@@ -30,6 +31,8 @@ public:
     void iterate();
     // Steps 1-6 only (the settling phase).
     void adapt();
+    // Steps 2-6 for a given sample x instead of a random one (for tests).
+    void adapt_to(const Vec3& x);
     // Step 7: a vertex split of the most active vertex.
     void split_most_active();
     // Step 8: every inactive vertex removed by an edge collapse (and, with edge_swap, step 1-3 of
@@ -37,25 +40,32 @@ public:
     void remove_inactive();
     // Section 4: the edge swap around vertex v.
     void swap_around(Vertex v);
+    // Caches the rings of vertices with at most n neighbours only (RingCache::set_limit); the
+    // others are read from the half-edge mesh. The results are the same bits either way; for
+    // tests of both paths. O(n).
+    void limit_ring_cache(std::uint32_t n);
     // Time each phase into Statistics::seconds_* from now on (costs a clock read per phase).
     void set_profiling(bool on) { profiling_ = on; }
 
     const Mesh& mesh() const { return mesh_; }
     const VertexGrid& grid() const { return grid_; }
     const ActivityIndex& activity() const { return activity_; }
+    const RingCache& rings() const { return rings_; }
     const Statistics& stats() const { return stats_; }
     Statistics& stats() { return stats_; }
     std::uint64_t iteration() const { return iteration_; }
 
     // Checks that the grid and the activity index hold exactly the mesh's alive vertices at
-    // their positions; returns an empty string or the first mismatch. O(n); for tests.
+    // their positions and that the ring cache matches the mesh; returns an empty string or the
+    // first mismatch. O(n); for tests.
     std::string check_consistency() const;
 
 private:
-    Vertex sample_and_find_winner(Vec3& x);
+    const Vec3& next_sample();
     void move_winner(Vertex w, const Vec3& x);
     void smooth_neighbourhood(Vertex w);
-    void grow_scratch(std::size_t n);
+    const std::uint32_t* ring_of(Vertex v, std::vector<std::uint32_t>& scratch, std::uint32_t& count);
+    const std::uint32_t* walk_ring(Vertex v, std::vector<std::uint32_t>& scratch, std::uint32_t& count);
     float face_deviation(Face f) const;
     float edge_deviation(Halfedge h) const;
     void set_position(Vertex v, const Vec3& p);
@@ -66,18 +76,19 @@ private:
     Mesh mesh_;
     VertexGrid grid_;
     ActivityIndex activity_;
+    RingCache rings_;
     std::unique_ptr<PointGrid> cloud_index_;  // eq. (9); built only for the edge swap
     Random rng_;
+    std::uint32_t ahead_[2] = {0, 0};  // the next two samples' indices, drawn in advance
     Statistics stats_;
     bool profiling_ = false;
     std::uint64_t iteration_ = 0;
     std::uint64_t next_removal_ = 0;  // iteration of the next step 8
     std::uint64_t period_start_ = 0;  // activity clock at the start of the current step-8 period
     // Scratch space reused across iterations (no allocation in steady state).
-    std::vector<Vertex> ring_;
-    std::vector<Halfedge> out_;
-    std::vector<Vec3> new_positions_;
-    std::vector<Vec3> scratch_;
+    std::vector<std::uint32_t> ring_;  // the ring of a vertex not in the ring cache
+    std::vector<std::uint32_t> ring2_;
+    std::vector<Vec3> updated_;         // step 4's new positions
     std::vector<std::uint32_t> inactive_;
     std::vector<Halfedge> swap_ring_;
     std::vector<float> swap_dm_;

@@ -50,7 +50,7 @@ TEST_CASE("a sphere sample reconstructs to a sphere") {
     CHECK(r.stats.swaps_tried == r.stats.swaps_kept + r.stats.swaps_undone);
 }
 
-TEST_CASE("the engine keeps mesh, grid and activity index consistent through every operation") {
+TEST_CASE("the engine keeps mesh, grid, activity index and ring cache consistent through every operation") {
     const PointCloud cloud = sphere_cloud(5000, 2.0f, {1, 2, 3});
     Parameters p;
     p.target_vertices = 400;
@@ -61,6 +61,8 @@ TEST_CASE("the engine keeps mesh, grid and activity index consistent through eve
     NeuralMesh engine(pts, box, p);
     std::uint64_t checks = 0, last_splits = 0, last_passes = 0;
     while (engine.mesh().n_vertices() < p.target_vertices) {
+        // From 200 vertices on, rings of more than 5 neighbours come from the mesh, not the cache.
+        if (engine.mesh().n_vertices() == 200 && engine.rings().limit() != 5) engine.limit_ring_cache(5);
         engine.iterate();
         const Statistics& s = engine.stats();
         if (s.splits != last_splits || s.removal_passes != last_passes) {
@@ -73,6 +75,75 @@ TEST_CASE("the engine keeps mesh, grid and activity index consistent through eve
     CHECK(checks > 400);
     CHECK(engine.stats().collapses > 0);
     CHECK(engine.stats().swaps_tried + engine.stats().swaps_illegal > 0);
+}
+
+TEST_CASE("steps 2-4 move the nearest vertex by eq. (2) and its ring by eq. (3)-(5)") {
+    // A learnt mesh (with splits, collapses and swaps behind it), then samples fed one by one;
+    // each result is compared with a direct evaluation of the equations on a copy of the
+    // positions: brute-force winner, eq. (2), and for every ring vertex the mean of its
+    // neighbours (eq. 5) projected on the plane of its area-weighted normal (eq. 4), scaled by
+    // alpha_n (eq. 3), all from the positions before step 4.
+    const PointCloud cloud = sphere_cloud(5000, 1.0f, {0.5f, -1.0f, 2.0f}, 11);
+    Parameters p;
+    p.target_vertices = 1000;
+    p.alpha_n = 0.2;  // large steps, so that an error in the smoothing cannot hide in rounding
+    // Rings from the ring cache, or (limit 4) walked on the half-edge mesh for most vertices.
+    for (const std::uint32_t limit : {RingCache::kCapacity, 4u}) {
+        CAPTURE(limit);
+        NeuralMesh engine(cloud.points, bounding_box(cloud.points), p);
+        while (engine.mesh().n_vertices() < 300) engine.iterate();
+        engine.limit_ring_cache(limit);
+        const Mesh& m = engine.mesh();
+        std::uint64_t checked_rings = 0;
+        for (int s = 0; s < 300; ++s) {
+            const Vec3 x = cloud.points[std::size_t(s) * 13 % cloud.size()] + Vec3{0.01f, -0.02f, 0.015f};
+            std::vector<Vec3> ref = m.positions();
+            // Eq. (1) by brute force; ties to the smaller index, as the grid answers.
+            std::uint32_t w = kInvalidIndex;
+            float best = 0.0f;
+            for (std::uint32_t v = 0; v < m.vertex_capacity(); ++v) {
+                if (m.is_removed(Vertex(v))) continue;
+                const float d2 = squared_distance(x, ref[v]);
+                if (w == kInvalidIndex || d2 < best) {
+                    w = v;
+                    best = d2;
+                }
+            }
+            // Eq. (2).
+            const float aw = float(p.alpha_w);
+            ref[w] = ref[w] * (1.0f - aw) + x * aw;
+            // Eq. (3)-(5) for each ring vertex, from the positions after eq. (2).
+            const std::vector<Vec3> before_smoothing = ref;
+            m.for_each_neighbor(Vertex(w), [&](Vertex v) {
+                const Vec3 pv = before_smoothing[v.idx];
+                Vec3 mean, normal;
+                float count = 0.0f;
+                m.for_each_neighbor(v, [&](Vertex u) {
+                    mean += before_smoothing[u.idx];
+                    count += 1.0f;
+                });
+                m.for_each_face_around(v, [&](Face f) {
+                    const Halfedge h = m.halfedge(f);
+                    const Vec3 a = before_smoothing[m.to(h).idx], b = before_smoothing[m.to(m.next(h)).idx],
+                               c = before_smoothing[m.to(m.next(m.next(h))).idx];
+                    normal += cross(b - a, c - a);
+                });
+                const Vec3 laplacian = mean / count - pv;
+                const Vec3 n = normalized(normal);
+                ref[v.idx] = pv + (laplacian - n * dot(laplacian, n)) * float(p.alpha_n);
+                ++checked_rings;
+            });
+            engine.adapt_to(x);
+            for (std::uint32_t v = 0; v < m.vertex_capacity(); ++v) {
+                if (m.is_removed(Vertex(v))) continue;
+                INFO("sample " << s << ", vertex " << v << (v == w ? " (the winner)" : ""));
+                // Float rounding in a different order: a few ulps of the unit-sized coordinates.
+                REQUIRE(norm(m.position(Vertex(v)) - ref[v]) <= 1e-6f);
+            }
+        }
+        CHECK(checked_rings > 300 * 4);
+        nmesh::test::require_engine_valid(engine);
+    }
 }
 
 TEST_CASE("step 7 splits the most active vertex and shares its counter equally") {
