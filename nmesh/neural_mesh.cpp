@@ -240,8 +240,10 @@ void NeuralMesh::split_most_active() {
     activity_.set_counter(v.idx, half);
     activity_.add(a.idx, half);
     grid_.insert(a.idx, q);
-    rings_.refresh_around(mesh_, a);  // a's neighbours had v in their rings
-    rings_.refresh_around(mesh_, v);
+    // The rings that changed: a's, v's, and those of a's neighbours (they had v in their rings,
+    // or, for the two opposite the new edge, gained a). v's other neighbours kept their rings.
+    rings_.refresh_around(mesh_, a);
+    rings_.refresh(mesh_, v);
     ++stats_.splits;
 }
 
