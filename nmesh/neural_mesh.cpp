@@ -2,7 +2,7 @@
 // it, plus the edge swap of section 4. Where the papers leave a choice open, the choice is named
 // "Choice:" here and listed in README.md.
 #include "nmesh/neural_mesh.h"
-#include "nmesh/prefetch.h"
+
 
 #include <algorithm>
 #include <cassert>
@@ -10,45 +10,13 @@
 #include <cmath>
 #include <sstream>
 
+#include "nmesh/float4.h"
+#include "nmesh/prefetch.h"
+
 namespace nmesh {
 namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-}  // namespace
-
-namespace {
-// Four float lanes (x, y, z and an unused one) for the smoothing loop: one SIMD instruction per
-// operation where the compiler offers vector types (GCC, Clang), plain lanes elsewhere. Each lane
-// computes exactly what the Vec3 operations compute, in the same order: the same bits, only
-// fewer instructions.
-#if defined(__GNUC__) || defined(__clang__)
-typedef float F4 __attribute__((vector_size(16)));
-typedef int I4 __attribute__((vector_size(16)));
-inline F4 load(const Vec3& p) { return F4{p.x, p.y, p.z, 0.0f}; }
-// The lanes rotated: (y, z, x, w) and (z, x, y, w).
-#if defined(__clang__)
-inline F4 yzx(F4 a) { return __builtin_shufflevector(a, a, 1, 2, 0, 3); }
-inline F4 zxy(F4 a) { return __builtin_shufflevector(a, a, 2, 0, 1, 3); }
-#else
-inline F4 yzx(F4 a) { return __builtin_shuffle(a, I4{1, 2, 0, 3}); }
-inline F4 zxy(F4 a) { return __builtin_shuffle(a, I4{2, 0, 1, 3}); }
-#endif
-inline F4 cross(F4 a, F4 b) { return yzx(a) * zxy(b) - zxy(a) * yzx(b); }
-#else
-struct F4 {
-    float v[4];
-    float operator[](int i) const { return v[i]; }
-};
-inline F4 load(const Vec3& p) { return {{p.x, p.y, p.z, 0.0f}}; }
-inline F4 operator+(F4 a, F4 b) { return {{a.v[0] + b.v[0], a.v[1] + b.v[1], a.v[2] + b.v[2], 0.0f}}; }
-inline F4 operator-(F4 a, F4 b) { return {{a.v[0] - b.v[0], a.v[1] - b.v[1], a.v[2] - b.v[2], 0.0f}}; }
-inline F4 operator*(F4 a, float s) { return {{a.v[0] * s, a.v[1] * s, a.v[2] * s, 0.0f}}; }
-inline F4 cross(F4 a, F4 b) {
-    return {{a.v[1] * b.v[2] - a.v[2] * b.v[1], a.v[2] * b.v[0] - a.v[0] * b.v[2], a.v[0] * b.v[1] - a.v[1] * b.v[0], 0.0f}};
-}
-#endif
-inline Vec3 to_vec3(F4 a) { return {a[0], a[1], a[2]}; }
-inline float dot(F4 a, F4 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 }  // namespace
 
 NeuralMesh::NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bounds, const Parameters& params)
@@ -118,6 +86,7 @@ const std::uint32_t* NeuralMesh::walk_ring(Vertex v, std::vector<std::uint32_t>&
 // Choice: all neighbours are moved from the positions they had before this step (a Jacobi
 // update), so the result does not depend on the order of the ring.
 void NeuralMesh::smooth_neighbourhood(Vertex w) {
+    using namespace float4;  // F4, load, cross, dot, to_vec3
     const float an = float(params_.alpha_n);
     if (an == 0.0f) return;
     std::uint32_t k = 0;

@@ -1,0 +1,46 @@
+// nmesh/float4.h — four float lanes (x, y, z and an unused one) for the learning loop's
+// smoothing arithmetic: one SIMD instruction per operation where the compiler offers vector types
+// (GCC, Clang), plain lanes elsewhere.
+//
+// Each lane computes exactly what the Vec3 operations compute, in the same order (a component of
+// a cross product is still a.y * b.z - a.z * b.y), so the results are the same bits as with Vec3;
+// only the instruction count falls. Internal to the library's .cpp files. Defining
+// NMESH_PLAIN_FLOAT4 selects the plain lanes everywhere (to check that both give the same bits).
+#pragma once
+
+#include "nmesh/vec3.h"
+
+namespace nmesh {
+namespace float4 {
+
+#if (defined(__GNUC__) || defined(__clang__)) && !defined(NMESH_PLAIN_FLOAT4)
+typedef float F4 __attribute__((vector_size(16)));
+typedef int I4 __attribute__((vector_size(16)));
+inline F4 load(const Vec3& p) { return F4{p.x, p.y, p.z, 0.0f}; }
+// The lanes rotated: (y, z, x, w) and (z, x, y, w).
+#if defined(__clang__)
+inline F4 yzx(F4 a) { return __builtin_shufflevector(a, a, 1, 2, 0, 3); }
+inline F4 zxy(F4 a) { return __builtin_shufflevector(a, a, 2, 0, 1, 3); }
+#else
+inline F4 yzx(F4 a) { return __builtin_shuffle(a, I4{1, 2, 0, 3}); }
+inline F4 zxy(F4 a) { return __builtin_shuffle(a, I4{2, 0, 1, 3}); }
+#endif
+inline F4 cross(F4 a, F4 b) { return yzx(a) * zxy(b) - zxy(a) * yzx(b); }
+#else
+struct F4 {
+    float v[4];
+    float operator[](int i) const { return v[i]; }
+};
+inline F4 load(const Vec3& p) { return {{p.x, p.y, p.z, 0.0f}}; }
+inline F4 operator+(F4 a, F4 b) { return {{a.v[0] + b.v[0], a.v[1] + b.v[1], a.v[2] + b.v[2], 0.0f}}; }
+inline F4 operator-(F4 a, F4 b) { return {{a.v[0] - b.v[0], a.v[1] - b.v[1], a.v[2] - b.v[2], 0.0f}}; }
+inline F4 operator*(F4 a, float s) { return {{a.v[0] * s, a.v[1] * s, a.v[2] * s, 0.0f}}; }
+inline F4 cross(F4 a, F4 b) {
+    return {{a.v[1] * b.v[2] - a.v[2] * b.v[1], a.v[2] * b.v[0] - a.v[0] * b.v[2], a.v[0] * b.v[1] - a.v[1] * b.v[0], 0.0f}};
+}
+#endif
+inline Vec3 to_vec3(F4 a) { return {a[0], a[1], a[2]}; }
+inline float dot(F4 a, F4 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+}  // namespace float4
+}  // namespace nmesh
