@@ -50,13 +50,18 @@ void NeuralMesh::set_position(Vertex v, const Vec3& p) {
 }
 
 // Step 1: a random sample x from the cloud.
-// The samples are drawn two iterations ahead (the sequence is the same; only the time of the draw
-// moves) and the one after next is prefetched, so that it is in the cache when its turn comes.
+// The samples are drawn three iterations ahead (the sequence is the same; only the time of the
+// draw moves), and what the winner search will read is fetched in stages, each from memory the
+// previous stage brought into the cache: the sample three ahead from the cloud, the grid cell
+// slot of the one two ahead, and the vertex block of the next one's cell.
 const Vec3& NeuralMesh::next_sample() {
     const Vec3& x = points_[ahead_[0]];
     ahead_[0] = ahead_[1];
-    ahead_[1] = rng_.below(std::uint32_t(points_.size()));
-    prefetch_for_read(&points_[ahead_[1]]);
+    ahead_[1] = ahead_[2];
+    ahead_[2] = rng_.below(std::uint32_t(points_.size()));
+    prefetch_for_read(&points_[ahead_[2]]);
+    grid_.prefetch_query(points_[ahead_[1]]);
+    grid_.prefetch_cell(points_[ahead_[0]]);
     return x;
 }
 
@@ -94,6 +99,21 @@ void NeuralMesh::smooth_neighbourhood(Vertex w) {
     if (updated_.size() < k) updated_.resize(k);  // grows to the largest valence seen, then never
     Vec3* updated = updated_.data();
     const Vec3* pos = mesh_.positions().data();  // read only until every new position is known
+    // Everything this step reads is known from w's ring: ask for all of it at once, so that the
+    // cache misses of a large mesh overlap instead of following one another. First the ring
+    // vertices' lines, positions and grid slots, then (once the lines arrive, all together) the
+    // positions of their own neighbours.
+    for (std::uint32_t i = 0; i < k; ++i) {
+        rings_.prefetch(Vertex(ring[i]));
+        prefetch_for_read(&pos[ring[i]]);
+        grid_.prefetch_move(ring[i]);
+    }
+    for (std::uint32_t i = 0; i < k; ++i) {
+        const Vertex v(ring[i]);
+        const std::uint32_t m = rings_.count(v);
+        const std::uint32_t* r = rings_.neighbours(v);
+        for (std::uint32_t j = 0; j < m; ++j) prefetch_for_read(&pos[r[j]]);
+    }
     const F4 pw = load(pos[w.idx]);
     for (std::uint32_t i = 0; i < k; ++i) {
         const std::uint32_t v = ring[i];
@@ -134,6 +154,7 @@ void NeuralMesh::adapt() {
 
 void NeuralMesh::adapt_to(const Vec3& x) {
     const Vertex w(grid_.nearest(x));  // step 2, eq. (1)
+    activity_.prefetch(w.idx);         // needed at step 5: let it load during steps 3-4
     move_winner(w, x);                 // step 3
     smooth_neighbourhood(w);           // step 4
     activity_.signal(w.idx);           // step 5, eq. (6): tau_w += 1
@@ -147,6 +168,7 @@ void NeuralMesh::adapt_profiled() {
     const auto t0 = Clock::now();
     const Vec3 x = next_sample();
     const Vertex w(grid_.nearest(x));
+    activity_.prefetch(w.idx);
     const auto t1 = Clock::now();
     move_winner(w, x);
     smooth_neighbourhood(w);

@@ -79,7 +79,7 @@ private:
     RingCache rings_;
     std::unique_ptr<PointGrid> cloud_index_;  // eq. (9); built only for the edge swap
     Random rng_;
-    std::uint32_t ahead_[2] = {0, 0};  // the next two samples' indices, drawn in advance
+    std::uint32_t ahead_[3] = {0, 0, 0};  // the next three samples' indices, drawn in advance
     Statistics stats_;
     bool profiling_ = false;
     std::uint64_t iteration_ = 0;

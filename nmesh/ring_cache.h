@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "nmesh/mesh.h"
+#include "nmesh/prefetch.h"
 
 namespace nmesh {
 
@@ -45,6 +46,8 @@ public:
     std::uint32_t count(Vertex v) const { return lines_[v.idx].count; }
     // v's neighbours, clockwise; count(v) of them.
     const std::uint32_t* neighbours(Vertex v) const { return lines_[v.idx].ids; }
+    // Starts loading v's line into the cache (a hint; no effect on any result).
+    void prefetch(Vertex v) const { prefetch_for_read(&lines_[v.idx]); }
 
     // An empty string when every alive vertex of `mesh` is cached with its current neighbours in
     // clockwise order (any starting point) or marked as not cached with a valence above

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "nmesh/bounding_box.h"
+#include "nmesh/prefetch.h"
 #include "nmesh/vec3.h"
 
 namespace nmesh {
@@ -88,6 +89,17 @@ public:
     // shells would cost more than a pass over all occupied cells, and that pass (pruned by cell
     // distance) is done instead, so a query never costs more than about twice a brute-force scan.
     std::uint32_t nearest(const Vec3& q) const;
+
+    // Hints that start loading memory a later call will need; no effect on any answer. The
+    // learning loop knows its next sample, and the vertices it is about to move, ahead of time.
+    // prefetch_query(q): the table slot of q's cell; prefetch_cell(q), best called once that
+    // slot is in the cache: the first block of the cell's vertices, when the cell is occupied.
+    void prefetch_query(const Vec3& q) const { prefetch_for_read(&table_[home(cell_key(q))]); }
+    void prefetch_cell(const Vec3& q) const {
+        const std::uint32_t s = find_cell(cell_key(q));
+        if (s != kNone) prefetch_for_read(&blocks_[table_[s].head]);
+    }
+    void prefetch_move(std::uint32_t id) const { prefetch_for_read(&slots_[id]); }
 
     std::size_t size() const { return size_; }
     bool contains(std::uint32_t id) const { return id < slots_.size() && slots_[id].entry != kNone; }
