@@ -41,7 +41,8 @@
 //   - the input storage, in a forked child: reconstruct() with a 4-vertex target (the tetrahedron),
 //     VmRSS and VmHWM read from the progress report that reconstruct() makes at its end, while
 //     the engine is still alive, minus VmRSS before the call. The resident memory the engine adds
-//     per input point (the normalised copy of the cloud, 12 bytes, and the nearest-point index),
+//     per input point (the nearest-point index, which holds a sorted copy of the normalised points;
+//     the engine normalises its samples on the fly and keeps no copy of its own),
 //     and the peak per input point while the engine is built (the index's temporary arrays
 //     included). The index alone per PointGrid::memory_bytes is given too;
 //   - the mesh, in the first timed run: VmHWM from the first progress report (65,536

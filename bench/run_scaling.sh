@@ -103,9 +103,10 @@ if [[ $runs_largest != "$runs" ]]; then command+=" $runs_largest"; fi
   echo
   echo "**Memory** is read from /proc/self/status (VmRSS, and VmHWM reset through /proc/self/clear_refs);"
   echo "the caller's cloud (\`PointCloud\`, 12 bytes per point) is in memory throughout and never counted."
-  echo "*Input B/point*: the resident memory the engine adds per input point (a normalised copy of the"
-  echo "cloud, 12 bytes, and its nearest-point index; the index alone per \`PointGrid::memory_bytes\` in"
-  echo "brackets), measured in a forked copy of the process with a 4-vertex target, at the progress report"
+  echo "*Input B/point*: the resident memory the engine adds per input point (its nearest-point index,"
+  echo "which holds a sorted copy of the normalised points; the engine normalises its samples on the fly;"
+  echo "the index alone per \`PointGrid::memory_bytes\` in brackets), measured in a forked copy of the"
+  echo "process with a 4-vertex target, at the progress report"
   echo "\`reconstruct()\` makes at its end. *Setup peak*: the peak while the engine is built, per input"
   echo "point (the index's temporary arrays included). *Bytes/vertex*: in the first timed run, the peak"
   echo "from the first progress report (65,536 iterations, after the engine is built) to the return of"
@@ -194,7 +195,7 @@ if [[ $runs_largest != "$runs" ]]; then command+=" $runs_largest"; fi
       printf "- At most 200 bytes per mesh vertex of peak memory during learning, input excluded: largest %.0f bytes/vertex (%s vertices; rows from 10,000 vertices), %s.\n", \
         bpv, c(bpvn), verdict(bpv <= 200, sprintf("by %.0f bytes", bpv - 200))
       total = 12 + inpp
-      printf "- Input points stored in 12-16 bytes each: %.1f bytes per point at %s points (the caller'"'"'s cloud, 12, plus %.1f the engine adds: its normalised copy and the nearest-point index), %s.\n", \
+      printf "- Input points stored in 12-16 bytes each: %.1f bytes per point at %s points (the caller'"'"'s cloud, 12, plus %.1f the engine adds: the nearest-point index with its sorted copy of the points), %s.\n", \
         total, c(pl), inpp, verdict(total <= 16, sprintf("%.1fx the 16-byte bound", total / 16))
       printf "- %s-point input no more than 1.5x slower than %s-point (same 30,000-vertex output, loading excluded): %.2fx (learning loop alone %.2fx), %s.\n", \
         c(pl), c(p0), tl / t0, ll / l0, verdict(tl / t0 <= 1.5, sprintf("by %.2fx", tl / t0 - 1.5))

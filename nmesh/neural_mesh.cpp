@@ -19,8 +19,9 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 }  // namespace
 
-NeuralMesh::NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bounds, const Parameters& params)
-    : points_(points), params_(params), grid_(bounds), activity_(params.alpha), rng_(params.seed) {
+NeuralMesh::NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bounds, const Parameters& params,
+                       const PointTransform& transform)
+    : points_(points), transform_(transform), params_(params), grid_(bounds), activity_(params.alpha), rng_(params.seed) {
     // Choice: the initial tetrahedron is regular, centred on the cloud's bounding box, with a
     // circumradius of a quarter of the box's diagonal: inside the data for a closed scan, and
     // large enough that all four vertices win signals from the start.
@@ -32,7 +33,12 @@ NeuralMesh::NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bound
         grid_.insert(v, mesh_.position(Vertex(v)));
         activity_.add(v, 0.0);
     }
-    if (params_.edge_swap) cloud_index_ = std::make_unique<PointGrid>(points_);
+    if (params_.edge_swap) {
+        // The index keeps its own (sorted) copy of the transformed points; this one is temporary.
+        std::vector<Vec3> transformed(points_.size());
+        for (std::size_t i = 0; i < points_.size(); ++i) transformed[i] = transform_(points_[i]);
+        cloud_index_ = std::make_unique<PointGrid>(transformed);
+    }
     next_removal_ = std::uint64_t(params_.cec) * mesh_.n_vertices();
     for (std::uint32_t& a : ahead_) a = rng_.below(std::uint32_t(points_.size()));
     ring_.reserve(64);
@@ -54,14 +60,14 @@ void NeuralMesh::set_position(Vertex v, const Vec3& p) {
 // draw moves), and what the winner search will read is fetched in stages, each from memory the
 // previous stage brought into the cache: the sample three ahead from the cloud, the grid cell
 // slot of the one two ahead, and the vertex block of the next one's cell.
-const Vec3& NeuralMesh::next_sample() {
-    const Vec3& x = points_[ahead_[0]];
+Vec3 NeuralMesh::next_sample() {
+    const Vec3 x = transform_(points_[ahead_[0]]);
     ahead_[0] = ahead_[1];
     ahead_[1] = ahead_[2];
     ahead_[2] = rng_.below(std::uint32_t(points_.size()));
     prefetch_for_read(&points_[ahead_[2]]);
-    grid_.prefetch_query(points_[ahead_[1]]);
-    grid_.prefetch_cell(points_[ahead_[0]]);
+    grid_.prefetch_query(transform_(points_[ahead_[1]]));
+    grid_.prefetch_cell(transform_(points_[ahead_[0]]));
     return x;
 }
 

@@ -21,11 +21,22 @@
 
 namespace nmesh {
 
+// How the engine sees the caller's points: p' = (p - center) * scale. reconstruct() normalises
+// the cloud this way on the fly instead of keeping a normalised copy of it (12 bytes per point);
+// the default is the identity.
+struct PointTransform {
+    Vec3 center;
+    float scale = 1.0f;
+    Vec3 operator()(const Vec3& p) const { return (p - center) * scale; }
+};
+
 class NeuralMesh {
 public:
-    // `points` must already be normalised (reconstruct() centres them and scales them into a
-    // box of diagonal at most 1) and must outlive the engine. `params` must be valid.
-    NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bounds, const Parameters& params);
+    // The engine learns `transform(p)` for the points p of `points`, which must outlive it.
+    // The transformed points should be normalised (reconstruct() centres them and scales them
+    // into a box of diagonal at most 1); `bounds` is their bounding box. `params` must be valid.
+    NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bounds, const Parameters& params,
+               const PointTransform& transform = {});
 
     // One iteration of steps 1-6, followed by step 7 or 8 when it is due.
     void iterate();
@@ -61,7 +72,7 @@ public:
     std::string check_consistency() const;
 
 private:
-    const Vec3& next_sample();
+    Vec3 next_sample();
     void move_winner(Vertex w, const Vec3& x);
     void smooth_neighbourhood(Vertex w);
     const std::uint32_t* ring_of(Vertex v, std::vector<std::uint32_t>& scratch, std::uint32_t& count);
@@ -72,6 +83,7 @@ private:
     void adapt_profiled();
 
     const std::vector<Vec3>& points_;
+    PointTransform transform_;
     Parameters params_;
     Mesh mesh_;
     VertexGrid grid_;

@@ -28,27 +28,27 @@ namespace {
 
 // The cloud, centred on its bounding box and scaled by a power of two so that its diagonal is
 // at most 1. A power-of-two scale is exact in floating point: a cloud and the same cloud scaled
-// by 2^k normalise to the same bits, and so give the same mesh up to that scale.
+// by 2^k normalise to the same bits, and so give the same mesh up to that scale. The normalised
+// points are not stored: the engine applies the transform to each sample as it draws it.
 struct Normalization {
-    Vec3 center;
-    float scale = 1.0f;  // normalised = (p - center) * scale
-    std::vector<Vec3> points;
-    BoundingBox bounds;  // of the normalised points
+    PointTransform transform;  // normalised = (p - center) * scale
+    BoundingBox bounds;        // of the normalised points
 
     explicit Normalization(const PointCloud& cloud) {
         const BoundingBox box = cloud.bounds();
-        center = box.center();
+        transform.center = box.center();
         const double diag = box.diagonal();
-        scale = diag > 0.0 ? float(std::ldexp(1.0, -std::ilogb(diag) - 1)) : 1.0f;
-        points.resize(cloud.size());
-        for (std::size_t i = 0; i < points.size(); ++i) {
-            points[i] = (cloud.points[i] - center) * scale;
-            bounds.extend(points[i]);
-        }
+        transform.scale = diag > 0.0 ? float(std::ldexp(1.0, -std::ilogb(diag) - 1)) : 1.0f;
+        for (const Vec3& p : cloud.points) bounds.extend(transform(p));
+    }
+    std::vector<Vec3> normalised(const PointCloud& cloud) const {
+        std::vector<Vec3> points(cloud.size());
+        for (std::size_t i = 0; i < points.size(); ++i) points[i] = transform(cloud.points[i]);
+        return points;
     }
     IndexedMesh to_input(IndexedMesh m) const {
-        const float inv = 1.0f / scale;
-        for (Vec3& p : m.positions) p = p * inv + center;
+        const float inv = 1.0f / transform.scale;
+        for (Vec3& p : m.positions) p = p * inv + transform.center;
         return m;
     }
 };
@@ -98,7 +98,7 @@ Result reconstruct(const PointCloud& cloud, const Parameters& params, const Call
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
     const Normalization norm(cloud);
-    NeuralMesh engine(norm.points, norm.bounds, params);
+    NeuralMesh engine(cloud.points, norm.bounds, params, norm.transform);
     engine.set_profiling(callbacks.profile);
 
     std::vector<std::uint32_t> snapshots = callbacks.snapshot_vertices;
@@ -179,7 +179,7 @@ Result reconstruct(const PointCloud& cloud, const Parameters& params, const Call
     bool finished = false;
     if (!result.cancelled && params.finish) {
         Mesh mesh = engine.mesh();
-        finish_mesh(mesh, norm.points);
+        finish_mesh(mesh, norm.normalised(cloud));
         if (mesh.n_vertices() == engine.mesh().n_vertices()) {
             result.mesh = norm.to_input(mesh.to_indexed());
             finished = true;

@@ -146,6 +146,34 @@ TEST_CASE("steps 2-4 move the nearest vertex by eq. (2) and its ring by eq. (3)-
     }
 }
 
+TEST_CASE("a transform applied on the fly learns what the transformed copy of the cloud learns") {
+    // reconstruct() keeps no normalised copy of the cloud: the engine transforms each sample as it
+    // draws it. That must give the very mesh an engine fed the transformed points gives.
+    const PointCloud cloud = sphere_cloud(4000, 3.0f, {10.0f, -4.0f, 7.0f}, 5);
+    PointTransform t;
+    t.center = {10.0f, -4.0f, 7.0f};
+    t.scale = 0.125f;
+    std::vector<Vec3> copy;
+    for (const Vec3& q : cloud.points) copy.push_back(t(q));
+    Parameters p;
+    p.target_vertices = 400;
+    p.cvs = 20;  // collapses, and so edge swaps, which ask the index built from the transformed points
+    p.cec = 3;
+    NeuralMesh on_the_fly(cloud.points, bounding_box(copy), p, t);
+    NeuralMesh from_copy(copy, bounding_box(copy), p);
+    while (from_copy.mesh().n_vertices() < p.target_vertices) {
+        on_the_fly.iterate();
+        from_copy.iterate();
+    }
+    CHECK(on_the_fly.mesh().same_arrays(from_copy.mesh()));
+    CHECK(on_the_fly.stats().swaps_tried == from_copy.stats().swaps_tried);
+    CHECK(on_the_fly.stats().swaps_tried > 0);
+    // The mesh lies on the transformed sphere (radius 3 * 0.125), not on the original one.
+    float worst = 0.0f;
+    for (const Vec3& v : from_copy.mesh().to_indexed().positions) worst = std::max(worst, std::fabs(norm(v) - 0.375f));
+    CHECK(worst < 0.02f);
+}
+
 TEST_CASE("step 7 splits the most active vertex and shares its counter equally") {
     const PointCloud cloud = sphere_cloud(3000);
     Parameters p;
