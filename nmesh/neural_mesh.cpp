@@ -3,7 +3,6 @@
 // "Choice:" here and listed in README.md.
 #include "nmesh/neural_mesh.h"
 
-
 #include <algorithm>
 #include <cassert>
 #include <chrono>
