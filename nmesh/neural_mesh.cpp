@@ -32,12 +32,7 @@ NeuralMesh::NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bound
         grid_.insert(v, mesh_.position(Vertex(v)));
         activity_.add(v, 0.0);
     }
-    if (params_.edge_swap) {
-        // The index keeps its own (sorted) copy of the transformed points; this one is temporary.
-        std::vector<Vec3> transformed(points_.size());
-        for (std::size_t i = 0; i < points_.size(); ++i) transformed[i] = transform_(points_[i]);
-        cloud_index_ = std::make_unique<PointGrid>(transformed);
-    }
+    if (params_.edge_swap) cloud_index_ = std::make_unique<PointGrid>(points_, transform_);
     next_removal_ = std::uint64_t(params_.cec) * mesh_.n_vertices();
     for (std::uint32_t& a : ahead_) a = rng_.below(std::uint32_t(points_.size()));
     ring_.reserve(64);

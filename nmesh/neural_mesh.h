@@ -14,21 +14,13 @@
 #include "nmesh/activity_index.h"
 #include "nmesh/mesh.h"
 #include "nmesh/point_grid.h"
+#include "nmesh/point_transform.h"
 #include "nmesh/random.h"
 #include "nmesh/reconstruct.h"
 #include "nmesh/ring_cache.h"
 #include "nmesh/vertex_grid.h"
 
 namespace nmesh {
-
-// How the engine sees the caller's points: p' = (p - center) * scale. reconstruct() normalises
-// the cloud this way on the fly instead of keeping a normalised copy of it (12 bytes per point);
-// the default is the identity.
-struct PointTransform {
-    Vec3 center;
-    float scale = 1.0f;
-    Vec3 operator()(const Vec3& p) const { return (p - center) * scale; }
-};
 
 class NeuralMesh {
 public:

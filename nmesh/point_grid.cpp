@@ -73,20 +73,22 @@ double choose_cell_size(const double e[3], double n) {
 
 // ---- construction -------------------------------------------------------------------------------
 
-PointGrid::PointGrid(const std::vector<Vec3>& points) {
+PointGrid::PointGrid(const std::vector<Vec3>& points, const PointTransform& transform) {
     const std::size_t n = points.size();
     if (n == 0) throw InputError("PointGrid: the point cloud is empty");
     if (n > std::numeric_limits<std::uint32_t>::max())
         throw InputError("PointGrid: more than 2^32 - 1 points (" + std::to_string(n) + ")");
+    // One pass: finiteness and the bounding box of the transformed points.
+    BoundingBox box;
     for (std::size_t i = 0; i < n; ++i) {
-        const Vec3& p = points[i];
+        const Vec3 p = transform(points[i]);
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
             throw InputError("PointGrid: point " + std::to_string(i) +
                              " has a NaN or infinite coordinate");
+        box.extend(p);
     }
 
     // Grid geometry.
-    const BoundingBox box = bounding_box(points);
     double extent[3];
     for (int a = 0; a < 3; ++a) {
         origin_[a] = double(box.min[a]);
@@ -113,9 +115,10 @@ PointGrid::PointGrid(const std::vector<Vec3>& points) {
     std::vector<std::uint64_t> cell_of(n);
     occupancy_.assign(std::size_t(std::uint64_t(bricks_[0]) * bricks_[1] * bricks_[2]), OccupancyWord{});
     for (std::size_t i = 0; i < n; ++i) {
+        const Vec3 p = transform(points[i]);
         std::uint32_t c3[3];
         for (int a = 0; a < 3; ++a) {
-            const double u = (double(points[i][a]) - origin_[a]) * inv_cell_size_;
+            const double u = (double(p[a]) - origin_[a]) * inv_cell_size_;
             c3[a] = std::min(std::uint32_t(u), dims_[a] - 1);  // u >= 0: truncation is floor
         }
         const std::uint64_t c = cell_id(c3[0], c3[1], c3[2]);
@@ -138,7 +141,7 @@ PointGrid::PointGrid(const std::vector<Vec3>& points) {
     entries_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
         const std::uint32_t pos = cursor[std::size_t(slot_of(cell_of[i]))]++;
-        entries_[pos] = {points[i], std::uint32_t(i)};
+        entries_[pos] = {transform(points[i]), std::uint32_t(i)};
     }
 
     // The rest of the pyramid: a cell of level l + 1 is occupied when one of its 8 children is.

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "nmesh/point_transform.h"
 #include "nmesh/vec3.h"
 
 namespace nmesh {
@@ -50,7 +51,10 @@ public:
     //
     // Throws InputError if `points` is empty, has more than 2^32 - 1 points, or contains a NaN or
     // infinite coordinate.
-    explicit PointGrid(const std::vector<Vec3>& points);
+    //
+    // `transform`: the index is built over transform(p) for the points p (no copy of the
+    // transformed cloud is made besides the index's own); identity by default.
+    explicit PointGrid(const std::vector<Vec3>& points, const PointTransform& transform = {});
 
     // The nearest point to q, with ties going to the smaller index.
     // Precondition: q is finite, and squared distances from q to the points fit in a float

@@ -45,11 +45,16 @@ inline Vec3 normalized(const Vec3& v) {
     const float n = norm(v);
     return n > 0.0f ? v / n : Vec3{};
 }
+// Componentwise minimum and maximum. As std::fmin and std::fmax, a NaN component loses to a
+// number (a box extended by a NaN point keeps its bounds), but written out so that they inline
+// (the library calls behind std::fmin cost a bounding box of a large cloud several times over).
+inline float min_ignoring_nan(float a, float b) { return (b < a || a != a) ? b : a; }
+inline float max_ignoring_nan(float a, float b) { return (b > a || a != a) ? b : a; }
 inline Vec3 min(const Vec3& a, const Vec3& b) {
-    return {std::fmin(a.x, b.x), std::fmin(a.y, b.y), std::fmin(a.z, b.z)};
+    return {min_ignoring_nan(a.x, b.x), min_ignoring_nan(a.y, b.y), min_ignoring_nan(a.z, b.z)};
 }
 inline Vec3 max(const Vec3& a, const Vec3& b) {
-    return {std::fmax(a.x, b.x), std::fmax(a.y, b.y), std::fmax(a.z, b.z)};
+    return {max_ignoring_nan(a.x, b.x), max_ignoring_nan(a.y, b.y), max_ignoring_nan(a.z, b.z)};
 }
 
 }  // namespace nmesh
