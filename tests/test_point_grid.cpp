@@ -14,12 +14,16 @@
 #include <string>
 #include <vector>
 
+#include "nmesh/bounding_box.h"
 #include "nmesh/error.h"
 #include "nmesh/point_grid.h"
+#include "nmesh/point_transform.h"
 #include "cloud_fixtures.h"
 
+using nmesh::BoundingBox;
 using nmesh::NearestPoint;
 using nmesh::PointGrid;
+using nmesh::PointTransform;
 using nmesh::Vec3;
 
 namespace {
@@ -236,6 +240,56 @@ TEST_CASE("PointGrid matches brute force on the bunny scan, within its memory bu
     const double per_cell = double(points.size()) / double(grid.occupied_cells());
     CHECK(per_cell >= 1.5);
     CHECK(per_cell <= 12.0);
+}
+
+TEST_CASE("componentwise min and max agree with std::fmin and std::fmax, NaN included") {
+    // The grid's bounding box is built with nmesh::min / nmesh::max, written out to inline.
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    const float values[] = {-3.5f, 0.0f, 2.0f, 1e30f, -inf, inf, nan};
+    for (const float a : values)
+        for (const float b : values) {
+            const Vec3 lo = nmesh::min(Vec3{a, b, a}, Vec3{b, a, b}), hi = nmesh::max(Vec3{a, b, a}, Vec3{b, a, b});
+            for (int k = 0; k < 3; ++k) {
+                const float x = k == 1 ? b : a, y = k == 1 ? a : b;
+                const float want_lo = std::fmin(x, y), want_hi = std::fmax(x, y);
+                CHECK((lo[k] == want_lo || (std::isnan(lo[k]) && std::isnan(want_lo))));
+                CHECK((hi[k] == want_hi || (std::isnan(hi[k]) && std::isnan(want_hi))));
+            }
+        }
+    BoundingBox box;
+    box.extend({1, 2, 3});
+    box.extend({nan, -1, 5});
+    CHECK(box.min == Vec3{1, -1, 3});
+    CHECK(box.max == Vec3{1, 2, 5});
+}
+
+TEST_CASE("PointGrid over transformed points answers as over a transformed copy") {
+    // reconstruct() builds the index over (p - center) * scale without copying the cloud: the
+    // answers (indices and distances) must be those of an index over the transformed copy, and
+    // of a brute force over that copy.
+    std::mt19937 rng(9);
+    std::vector<Vec3> points;
+    for (int i = 0; i < 5000; ++i) points.push_back(random_unit_vector(rng) * 40.0f + Vec3{300.0f, -20.0f, 7.0f});
+    PointTransform t;
+    t.center = {300.0f, -20.0f, 7.0f};
+    t.scale = 1.0f / 128.0f;
+    std::vector<Vec3> copy;
+    for (const Vec3& p : points) copy.push_back(t(p));
+    const PointGrid on_the_fly(points, t), from_copy(copy);
+    CHECK(on_the_fly.cell_size() == from_copy.cell_size());
+    CHECK(on_the_fly.memory_bytes() == from_copy.memory_bytes());
+    const std::vector<Vec3> queries = mixed_queries(copy, rng, 800);
+    CHECK(count_mismatches(on_the_fly, copy, queries) == 0);
+    for (const Vec3& q : queries) {
+        const NearestPoint a = on_the_fly.find_nearest(q), b = from_copy.find_nearest(q);
+        REQUIRE(a.index == b.index);
+        REQUIRE(a.squared_distance == b.squared_distance);
+    }
+    // A transform that overflows a coordinate is refused like a non-finite point.
+    PointTransform huge;
+    huge.scale = 1e38f;
+    CHECK_THROWS_AS(PointGrid(points, huge), nmesh::InputError);
 }
 
 TEST_CASE("PointGrid rejects clouds it cannot index") {
