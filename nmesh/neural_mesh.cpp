@@ -34,7 +34,8 @@ NeuralMesh::NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bound
     }
     if (params_.edge_swap) cloud_index_ = std::make_unique<PointGrid>(points_, transform_);
     next_removal_ = std::uint64_t(params_.cec) * mesh_.n_vertices();
-    for (std::uint32_t& a : ahead_) a = rng_.below(std::uint32_t(points_.size()));
+    for (Vec3& a : ahead_) a = transform_(points_[rng_.below(std::uint32_t(points_.size()))]);
+    ahead_index_ = rng_.below(std::uint32_t(points_.size()));
     ring_.reserve(64);
     ring2_.reserve(64);
     updated_.resize(16);
@@ -55,13 +56,13 @@ void NeuralMesh::set_position(Vertex v, const Vec3& p) {
 // previous stage brought into the cache: the sample three ahead from the cloud, the grid cell
 // slot of the one two ahead, and the vertex block of the next one's cell.
 Vec3 NeuralMesh::next_sample() {
-    const Vec3 x = transform_(points_[ahead_[0]]);
+    const Vec3 x = ahead_[0];
     ahead_[0] = ahead_[1];
-    ahead_[1] = ahead_[2];
-    ahead_[2] = rng_.below(std::uint32_t(points_.size()));
-    prefetch_for_read(&points_[ahead_[2]]);
-    grid_.prefetch_query(transform_(points_[ahead_[1]]));
-    grid_.prefetch_cell(transform_(points_[ahead_[0]]));
+    ahead_[1] = transform_(points_[ahead_index_]);  // each sample is normalised once
+    ahead_index_ = rng_.below(std::uint32_t(points_.size()));
+    prefetch_for_read(&points_[ahead_index_]);
+    grid_.prefetch_query(ahead_[1]);
+    grid_.prefetch_cell(ahead_[0]);
     return x;
 }
 

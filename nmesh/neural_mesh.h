@@ -83,7 +83,8 @@ private:
     RingCache rings_;
     std::unique_ptr<PointGrid> cloud_index_;  // eq. (9); built only for the edge swap
     Random rng_;
-    std::uint32_t ahead_[3] = {0, 0, 0};  // the next three samples' indices, drawn in advance
+    Vec3 ahead_[2];                     // the next two samples, normalised
+    std::uint32_t ahead_index_ = 0;     // the index of the one after them, drawn in advance
     Statistics stats_;
     bool profiling_ = false;
     std::uint64_t iteration_ = 0;
