@@ -66,6 +66,9 @@ done
 load_end=$(cut -d' ' -f1-3 /proc/loadavg)
 minutes=$(( ($(date +%s) - started + 30) / 60 ))
 
+# c(n): n with thousands separators, for the awk programs below.
+awk_commas='function c(n,   s) { s = sprintf("%d", n); while (s ~ /[0-9][0-9][0-9][0-9]/) sub(/[0-9][0-9][0-9]($|,)/, ",&", s); return s }'
+
 command="bench/run_scaling.sh"
 if (( quick )); then command+=" --quick"; fi
 command+=" $runs"
@@ -117,9 +120,8 @@ if [[ $runs_largest != "$runs" ]]; then command+=" $runs_largest"; fi
   echo "resident-memory counters: those per-vertex figures are in brackets and not judged; likewise the"
   echo "engine's fixed allocations dominate the per-point figure of the 35,947-point cloud."
   echo
-  awk -F, '
+  awk -F, "$awk_commas"'
     function lnn(n) { return n * log(n) }
-    function c(n,   s) { s = sprintf("%d", n); while (s ~ /[0-9][0-9][0-9][0-9]/) sub(/[0-9][0-9][0-9]($|,)/, ",&", s); return s }
     NR == 1 { next }
     { rows[NR] = $0; if ($4 == 30000) ref[$2] = $7 / lnn(30000) }
     END {
@@ -138,8 +140,7 @@ if [[ $runs_largest != "$runs" ]]; then command+=" $runs_largest"; fi
       print "time/(N ln N) is normalised to the 30,000-vertex row of the same cloud."
     }' "$out_csv"
   echo
-  awk -F, '
-    function c(n,   s) { s = sprintf("%d", n); while (s ~ /[0-9][0-9][0-9][0-9]/) sub(/[0-9][0-9][0-9]($|,)/, ",&", s); return s }
+  awk -F, "$awk_commas"'
     NR == 1 { next }
     { rows[NR] = $0; if (NR == 2) { first = $7; firstloop = $14 } }
     END {
@@ -159,15 +160,14 @@ if [[ $runs_largest != "$runs" ]]; then command+=" $runs_largest"; fi
   echo
   echo "| format | points | file MB | runs | time s | M points/s | MB/s |"
   echo "|---|---:|---:|---:|---|---|---:|"
-  awk -F, 'function c(n,   s) { s = sprintf("%d", n); while (s ~ /[0-9][0-9][0-9][0-9]/) sub(/[0-9][0-9][0-9]($|,)/, ",&", s); return s }
+  awk -F, "$awk_commas"'
     NR > 1 { printf "| %s | %s | %.1f | %d | %.4f (%.4f-%.4f) | %.1f (%.1f-%.1f) | %.0f |\n", $1, c($2), $3, $4, $5, $6, $7, $8, $9, $10, $11 }' "$load_csv"
   echo
   echo "## Targets"
   echo
-  awk -F, -v dense="$dense" '
+  awk -F, -v dense="$dense" "$awk_commas"'
     function lnn(n) { return n * log(n) }
     function verdict(ok, miss) { return ok ? "**met**" : "**missed** (" miss ")" }
-    function c(n,   s) { s = sprintf("%d", n); while (s ~ /[0-9][0-9][0-9][0-9]/) sub(/[0-9][0-9][0-9]($|,)/, ",&", s); return s }
     FNR == 1 { file++; next }
     file == 1 && $2 == dense { t[$4] = $7; if ($4 > maxn) maxn = $4; if ($4 >= 10000 && $21 > bpv) { bpv = $21; bpvn = $4 } }
     file == 1 && $2 != dense && $4 >= 10000 && $21 > bpv { bpv = $21; bpvn = $4 }
