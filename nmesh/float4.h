@@ -10,13 +10,26 @@
 
 #include "nmesh/vec3.h"
 
+#if (defined(__GNUC__) || defined(__clang__)) && !defined(NMESH_PLAIN_FLOAT4) && defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace nmesh {
 namespace float4 {
 
 #if (defined(__GNUC__) || defined(__clang__)) && !defined(NMESH_PLAIN_FLOAT4)
 typedef float F4 __attribute__((vector_size(16)));
 typedef int I4 __attribute__((vector_size(16)));
+#if defined(__SSE2__)
+// x and y in one 8-byte load, z in a 4-byte one: three instructions where the element-wise
+// initialiser below takes five (the smoothing step loads about 45 positions per iteration).
+inline F4 load(const Vec3& p) {
+    const __m128 xy = _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&p.x)));
+    return F4(_mm_movelh_ps(xy, _mm_load_ss(&p.z)));
+}
+#else
 inline F4 load(const Vec3& p) { return F4{p.x, p.y, p.z, 0.0f}; }
+#endif
 // The lanes rotated: (y, z, x, w) and (z, x, y, w).
 #if defined(__clang__)
 inline F4 yzx(F4 a) { return __builtin_shufflevector(a, a, 1, 2, 0, 3); }
