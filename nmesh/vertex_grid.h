@@ -30,6 +30,10 @@
 #include <limits>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "nmesh/bounding_box.h"
 #include "nmesh/prefetch.h"
 #include "nmesh/vec3.h"
@@ -152,10 +156,30 @@ private:
         if (!(t >= 0.0)) return 0;  // also maps NaN to 0, keeping the conversion defined
         return t < double(kMaxIndex) ? std::uint32_t(t) : kMaxIndex;
     }
+#if defined(__SSE2__)
+    // axis_index() for the three axes at once, x and y in the two lanes of one register: the same
+    // operations on the same doubles, so the same key (max(t, 0) with t first gives 0 for a NaN t,
+    // as axis_index() does). A vertex move computes one key: this halves the cost of a move.
+    std::uint64_t cell_key(const Vec3& p) const {
+        const __m128d lo = _mm_setzero_pd(), hi = _mm_set1_pd(double(kMaxIndex));
+        const __m128d inv = _mm_set1_pd(inv_cell_size_), bias = _mm_set1_pd(kIndexBias);
+        const __m128 xy = _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&p.x)));
+        __m128d txy = _mm_add_pd(_mm_mul_pd(_mm_sub_pd(_mm_cvtps_pd(xy), _mm_loadu_pd(origin_)), inv), bias);
+        __m128d tz = _mm_add_sd(_mm_mul_sd(_mm_sub_sd(_mm_cvtss_sd(lo, _mm_load_ss(&p.z)), _mm_load_sd(&origin_[2])), inv), bias);
+        txy = _mm_min_pd(_mm_max_pd(txy, lo), hi);
+        tz = _mm_min_sd(_mm_max_sd(tz, lo), hi);
+        const __m128i ixy = _mm_cvttpd_epi32(txy);
+        const std::uint32_t x = std::uint32_t(_mm_cvtsi128_si32(ixy));
+        const std::uint32_t y = std::uint32_t(_mm_cvtsi128_si32(_mm_shuffle_epi32(ixy, 1)));
+        const std::uint32_t z = std::uint32_t(_mm_cvttsd_si32(tz));
+        return std::uint64_t(x) << (2 * kIndexBits) | std::uint64_t(y) << kIndexBits | z;
+    }
+#else
     std::uint64_t cell_key(const Vec3& p) const {
         return (std::uint64_t(axis_index(p.x, 0)) << (2 * kIndexBits)) |
                (std::uint64_t(axis_index(p.y, 1)) << kIndexBits) | std::uint64_t(axis_index(p.z, 2));
     }
+#endif
     static std::uint32_t key_axis(std::uint64_t key, int axis) {
         return std::uint32_t(key >> (kIndexBits * (2 - axis))) & kMaxIndex;
     }
