@@ -94,6 +94,10 @@ void VertexGrid::set_cell_size(double h) {
     h = std::clamp(h, domain_extent_ * kMinCellFraction, domain_extent_);
     cell_size_ = h;
     inv_cell_size_ = 1.0 / h;
+    // Beyond ring 1 every cell is at least h - 2 margins away from a query inside its own cell
+    // (a gap to ring 2 is the gap to ring 1, at least -margin, plus h); 2^-19 h covers both.
+    const double ring2 = h * (1.0 - 1.0 / 524288.0);
+    ring2_bound2_ = ring2 * ring2 * kBoundShrink;
 }
 
 void VertexGrid::reset_table(std::size_t expected_cells) {
@@ -126,7 +130,8 @@ void VertexGrid::rebuild() {
         if (cell.key == kEmptyKey) continue;
         std::uint32_t fill = (cell.count - 1) % kBlockEntries + 1;
         for (std::uint32_t b = cell.head; b != kNone; b = block_next_[b], fill = kBlockEntries)
-            scratch_.insert(scratch_.end(), blocks_[b].entries, blocks_[b].entries + fill);
+            for (std::uint32_t k = 0; k < fill; ++k)
+                scratch_.push_back(Entry{entry_position(b * kBlockEntries + k), blocks_[b].id[k]});
     }
     assert(scratch_.size() == n);
 
@@ -190,7 +195,7 @@ void VertexGrid::add_to_cell(std::uint32_t id, const Vec3& p, std::uint64_t key)
         block_next_[b] = cell.head;
         cell.head = b;
     }
-    blocks_[cell.head].entries[lane] = Entry{p, id};
+    set_entry(cell.head * kBlockEntries + lane, p, id);
     slots_[id] = Slot{key, cell.head * kBlockEntries + lane};
     ++cell.count;
 }
@@ -205,9 +210,9 @@ void VertexGrid::remove_from_cell(std::uint32_t id) {
     const std::uint32_t last_lane = (cell.count - 1) % kBlockEntries;
     const std::uint32_t last = cell.head * kBlockEntries + last_lane;
     if (slot.entry != last) {
-        const Entry& moved = entry(last);
-        entry(slot.entry) = moved;
-        slots_[moved.id].entry = slot.entry;
+        const std::uint32_t moved = entry_id(last);
+        set_entry(slot.entry, entry_position(last), moved);
+        slots_[moved].entry = slot.entry;
     }
     slot = Slot{};
     --cell.count;
@@ -297,63 +302,93 @@ void VertexGrid::free_block(std::uint32_t b) {
 // --- the nearest query ---------------------------------------------------------------------
 
 // The lower face of cell coordinate i along `axis`.
-double VertexGrid::face(int axis, std::int64_t i) const {
+inline double VertexGrid::face(int axis, std::int64_t i) const {
     return origin_[axis] + (double(i) - kIndexBias) * cell_size_;
 }
 
-// Branch-free: the keys of the cell's entries are folded into the query's best key.
+// Four distances at a time, each computed as squared_distance(q, p) computes it (same operations
+// in the same order, so the same bits); the lanes that may beat the best vertex so far (rarely
+// more than one per block once a near vertex is known) are then folded into its key.
 void VertexGrid::scan_cell(const Cell& cell, Query& query) const {
     std::uint64_t best = query.best;
     std::uint32_t fill = (cell.count - 1) % kBlockEntries + 1;
     std::uint32_t blocks = (cell.count + kBlockEntries - 1) / kBlockEntries;
+#if defined(__SSE2__)
+    const __m128 qx = _mm_set1_ps(query.q.x), qy = _mm_set1_ps(query.q.y), qz = _mm_set1_ps(query.q.z);
     for (std::uint32_t b = cell.head;; b = block_next_[b], fill = kBlockEntries) {
-        const Entry* entries = blocks_[b].entries;
-        for (std::uint32_t k = 0; k < fill; ++k) {
-            const float d2 = squared_distance(query.q, entries[k].position);
-            std::uint32_t bits;
-            std::memcpy(&bits, &d2, sizeof bits);
-            const std::uint64_t key = std::uint64_t(bits) << 32 | entries[k].id;
-            best = key < best ? key : best;
+        const Block& block = blocks_[b];
+        const __m128 dx = _mm_sub_ps(qx, _mm_load_ps(block.x));
+        const __m128 dy = _mm_sub_ps(qy, _mm_load_ps(block.y));
+        const __m128 dz = _mm_sub_ps(qz, _mm_load_ps(block.z));
+        const __m128 d2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
+        const __m128 limit = _mm_castsi128_ps(_mm_set1_epi32(int(std::uint32_t(best >> 32))));
+        unsigned lanes = unsigned(_mm_movemask_ps(_mm_cmple_ps(d2, limit))) & ((1u << fill) - 1u);
+        if (lanes != 0) {
+            alignas(16) std::uint32_t bits[kBlockEntries];
+            _mm_store_si128(reinterpret_cast<__m128i*>(bits), _mm_castps_si128(d2));
+            for (; lanes != 0; lanes &= lanes - 1) {
+                const unsigned k = unsigned(__builtin_ctz(lanes));
+                const std::uint64_t key = std::uint64_t(bits[k]) << 32 | block.id[k];
+                best = key < best ? key : best;
+            }
         }
         if (--blocks == 0) break;  // counted, so the end of the chain costs no memory access
     }
+#else
+    for (std::uint32_t b = cell.head;; b = block_next_[b], fill = kBlockEntries) {
+        for (std::uint32_t k = 0; k < fill; ++k) {
+            const float d2 = squared_distance(query.q, entry_position(b * kBlockEntries + k));
+            std::uint32_t bits;
+            std::memcpy(&bits, &d2, sizeof bits);
+            const std::uint64_t key = std::uint64_t(bits) << 32 | blocks_[b].id[k];
+            best = key < best ? key : best;
+        }
+        if (--blocks == 0) break;
+    }
+#endif
     query.best = best;
 }
 
-inline void VertexGrid::visit_cell(std::uint64_t key, Query& query) const {
+// Scans the cell of `key` if it is occupied; returns whether it was.
+inline bool VertexGrid::visit_cell(std::uint64_t key, Query& query) const {
     const std::size_t mask = table_.size() - 1;
     for (std::size_t i = home(key);; i = (i + 1) & mask) {
         if (table_[i].key == key) {
             scan_cell(table_[i], query);
-            return;
+            return true;
         }
-        if (table_[i].key == kEmptyKey) return;
+        if (table_[i].key == kEmptyKey) return false;
     }
 }
 
 // Rings 0 and 1 when the query's cell is inside the index box and not at the edge of the
 // coordinate range: the query's cell, then those of its 26 neighbours that are nearer than the
-// best vertex found (near a surface, a few of them).
+// best vertex found (near a surface, a few of them). The squared gaps are scaled by kBoundShrink
+// once, and the best distance is read back only after a cell was scanned, so that the test of a
+// neighbour is an addition and a comparison.
 void VertexGrid::visit_near(Query& query) const {
     const std::uint64_t x = std::uint64_t(query.cell[0]), y = std::uint64_t(query.cell[1]),
                         z = std::uint64_t(query.cell[2]);
     visit_cell(x << (2 * kIndexBits) | y << kIndexBits | z, query);
-    double g2[3][3];  // squared gap to the cells at offsets -1, 0, +1 along each axis
+    double limit = double(query.best_d2());
+    double g2[3][3];  // squared gap to the cells at offsets -1, 0, +1 along each axis, times kBoundShrink
     for (int a = 0; a < 3; ++a) {
-        g2[a][0] = query.gap(a, -1) * query.gap(a, -1);
+        const double lo = query.gap(a, -1), hi = query.gap(a, 1);
+        g2[a][0] = lo * lo * kBoundShrink;
         g2[a][1] = 0.0;
-        g2[a][2] = query.gap(a, 1) * query.gap(a, 1);
+        g2[a][2] = hi * hi * kBoundShrink;
     }
     for (int dx = -1; dx <= 1; ++dx) {
-        if (!query.may_beat(g2[0][dx + 1])) continue;
+        const double gx = g2[0][dx + 1];
+        if (gx > limit) continue;
         const std::uint64_t kx = (x + std::uint64_t(dx)) << (2 * kIndexBits);
         for (int dy = -1; dy <= 1; ++dy) {
-            const double gxy = g2[0][dx + 1] + g2[1][dy + 1];
-            if (!query.may_beat(gxy)) continue;
+            const double gxy = gx + g2[1][dy + 1];
+            if (gxy > limit) continue;
             const std::uint64_t kxy = kx | (y + std::uint64_t(dy)) << kIndexBits;
             for (int dz = -1; dz <= 1; ++dz) {
-                if ((dx | dy | dz) == 0 || !query.may_beat(gxy + g2[2][dz + 1])) continue;
-                visit_cell(kxy | (z + std::uint64_t(dz)), query);
+                if ((dx | dy | dz) == 0 || gxy + g2[2][dz + 1] > limit) continue;
+                if (visit_cell(kxy | (z + std::uint64_t(dz)), query)) limit = double(query.best_d2());
             }
         }
     }
@@ -448,6 +483,8 @@ std::uint32_t VertexGrid::nearest(const Vec3& q) const {
         near_path = near_path && query.cell[a] > 0 && query.cell[a] < std::int64_t(kMaxIndex);
     if (near_path) {
         visit_near(query);
+        // Most queries end here: the best vertex is nearer than any cell beyond ring 1 can be.
+        if (double(query.best_d2()) < ring2_bound2_) return std::uint32_t(query.best);
         r = 1;
     } else if (r > 1 && cells_within(r) > budget) {
         scan_all_cells(query);

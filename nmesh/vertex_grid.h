@@ -11,8 +11,10 @@
 //     10^6 vertices on a sphere, 1 in 45: a dense array would take 6 times the table's memory),
 //     and a dense array could not hold the vertices that stray outside the domain;
 //   - each occupied cell stores its vertices' positions inline, with their ids, in a chain of
-//     64-byte blocks (4 entries, one cache line each) taken from a pooled free list, so a query
-//     scans contiguous memory and a cell change recycles blocks instead of allocating;
+//     64-byte blocks (4 entries, one cache line each, as structure of arrays: 4 x, 4 y, 4 z and
+//     4 ids, so that a query computes 4 distances with one SIMD instruction per operation) taken
+//     from a pooled free list, so a query scans contiguous memory and a cell change recycles
+//     blocks instead of allocating;
 //   - a move that stays inside its cell only rewrites the stored position.
 //
 // The cell size follows the vertices: the grid is rebuilt, with a cell size aiming at
@@ -74,7 +76,7 @@ public:
         Slot& slot = slots_[id];
         const std::uint64_t key = cell_key(p);
         if (key == slot.key) {
-            entry(slot.entry).position = p;
+            set_entry_position(slot.entry, p);
             return;
         }
         move_to_cell(id, p, key);
@@ -107,9 +109,8 @@ public:
 
     std::size_t size() const { return size_; }
     bool contains(std::uint32_t id) const { return id < slots_.size() && slots_[id].entry != kNone; }
-    // The stored position of vertex `id`. Precondition: contains(id). The reference is
-    // invalidated by the next insert, move or remove.
-    const Vec3& position(std::uint32_t id) const { return entry(slots_[id].entry).position; }
+    // The stored position of vertex `id`. Precondition: contains(id).
+    Vec3 position(std::uint32_t id) const { return entry_position(slots_[id].entry); }
 
     // Edge length of the cells, in the units of the positions.
     double cell_size() const { return cell_size_; }
@@ -129,9 +130,12 @@ private:
         Vec3 position;
         std::uint32_t id;
     };
+    // kBlockEntries entries, lane by lane; the lanes past a cell's count hold stale values.
     struct alignas(64) Block {
-        Entry entries[kBlockEntries];
+        float x[kBlockEntries], y[kBlockEntries], z[kBlockEntries];
+        std::uint32_t id[kBlockEntries];
     };
+    static_assert(sizeof(Block) == 64, "a block must fill exactly one cache line");
     // A table slot: an occupied cell (key != kEmptyKey) with its block chain. The head block is the
     // only partly filled one: it holds entries [0, (count - 1) % kBlockEntries].
     struct Cell {
@@ -183,9 +187,23 @@ private:
     static std::uint32_t key_axis(std::uint64_t key, int axis) {
         return std::uint32_t(key >> (kIndexBits * (2 - axis))) & kMaxIndex;
     }
-    Entry& entry(std::uint32_t e) { return blocks_[e / kBlockEntries].entries[e % kBlockEntries]; }
-    const Entry& entry(std::uint32_t e) const {
-        return blocks_[e / kBlockEntries].entries[e % kBlockEntries];
+    // Entry e is lane e % kBlockEntries of block e / kBlockEntries.
+    Vec3 entry_position(std::uint32_t e) const {
+        const Block& b = blocks_[e / kBlockEntries];
+        const std::uint32_t k = e % kBlockEntries;
+        return {b.x[k], b.y[k], b.z[k]};
+    }
+    std::uint32_t entry_id(std::uint32_t e) const { return blocks_[e / kBlockEntries].id[e % kBlockEntries]; }
+    void set_entry_position(std::uint32_t e, const Vec3& p) {
+        Block& b = blocks_[e / kBlockEntries];
+        const std::uint32_t k = e % kBlockEntries;
+        b.x[k] = p.x;
+        b.y[k] = p.y;
+        b.z[k] = p.z;
+    }
+    void set_entry(std::uint32_t e, const Vec3& p, std::uint32_t id) {
+        set_entry_position(e, p);
+        blocks_[e / kBlockEntries].id[e % kBlockEntries] = id;
     }
 
     void move_to_cell(std::uint32_t id, const Vec3& p, std::uint64_t key);
@@ -212,7 +230,7 @@ private:
     struct Query;
     double face(int axis, std::int64_t i) const;
     void scan_cell(const Cell& cell, Query& query) const;
-    void visit_cell(std::uint64_t key, Query& query) const;
+    bool visit_cell(std::uint64_t key, Query& query) const;
     void visit_near(Query& query) const;
     void visit_ring(std::int64_t r, Query& query) const;
     void scan_all_cells(Query& query) const;
@@ -221,6 +239,7 @@ private:
     double domain_extent_ = 1.0;          // largest side of the domain
     double cell_size_ = 1.0;
     double inv_cell_size_ = 1.0;
+    double ring2_bound2_ = 0.0;  // a lower bound on the squared distance to ring 2 (visit_near), shrunk
 
     std::vector<Cell> table_;
     int table_shift_ = 64;

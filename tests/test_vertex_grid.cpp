@@ -210,6 +210,60 @@ TEST_CASE("VertexGrid: equal distances go to the smaller id") {
     CHECK(faces.nearest({0.25f, 0.0f, 1e-7f}) == 2);
 }
 
+TEST_CASE("VertexGrid: vertices and queries on cell faces and at the ring-2 distance, still exact") {
+    // The query prunes neighbour cells, and stops after ring 1, on lower bounds computed from the
+    // cell faces. Here those bounds are as tight as they get: a plane of vertices on a lattice of
+    // half a cell, lying on cell faces (the domain centre 0.5 is a face), queried on faces, a hair
+    // to either side of them, halfway between lattice points (many equal distances), and about one
+    // cell above the plane (the nearest vertex then lies at the ring-2 bound).
+    VertexGrid grid(unit_cube());
+    Reference ref;
+    Random rng(23);
+    std::uint32_t id = 0;
+    for (; id < 2000; ++id) {  // a plane of random vertices sets the cell size
+        const Vec3 p{float(rng.uniform()), float(rng.uniform()), 0.5f};
+        grid.insert(id, p);
+        ref.insert(id, p);
+    }
+    const double h = grid.cell_size();
+    const std::size_t rebuilds = grid.rebuild_count();
+    const int side = int(0.5 / (h / 2.0));
+    id = 0;
+    for (int i = -side; i < side && id < 2000; ++i) {
+        for (int j = -side; j < side && id < 2000; ++j, ++id) {
+            const Vec3 p{float(0.5 + i * h / 2.0), float(0.5 + j * h / 2.0), 0.5f};
+            grid.move(id, p);
+            ref.position[id] = p;
+        }
+    }
+    const float offsets[] = {0.0f, 1e-7f, -1e-7f, float(h / 4.0), float(h / 2.0)};
+    const float heights[] = {0.0f, 1e-7f, float(h / 2.0), float(h), float(h * (1.0 - 1e-6)), float(h * (1.0 + 1e-6))};
+    for (int k = 0; k < 3000; ++k) {
+        const Vec3 base = ref.position[rng.below(id)];
+        const Vec3 q{base.x + offsets[rng.below(5)], base.y + offsets[rng.below(5)],
+                     base.z + (rng.below(2) ? 1.0f : -1.0f) * heights[rng.below(6)]};
+        REQUIRE(grid.nearest(q) == ref.nearest(q));
+    }
+    CHECK(grid.cell_size() == h);  // the lattice kept the cells the queries were built for
+    CHECK(grid.rebuild_count() == rebuilds);
+
+    // The stop after ring 1: a query just inside the lower x face of its cell, a little more than
+    // a cell above the plane (the plane is in ring 1, at distance d), and one more vertex at the
+    // query's height, a little more than a cell away along -x: in ring 2, yet nearer than d.
+    const double e = h * 1e-4;
+    for (int k = 0; k < 50; ++k) {
+        const Vec3 below = ref.position[rng.below(id)];  // a lattice vertex: on x and z faces
+        const Vec3 q{float(below.x + e), below.y, float(below.z + h + 10.0 * e)};
+        const Vec3 side{float(q.x - h - e), q.y, q.z};
+        grid.insert(id, side);
+        ref.insert(id, side);
+        REQUIRE(ref.nearest(q) == id);
+        REQUIRE(grid.nearest(q) == id);
+        grid.remove(id);
+        ref.remove(id);
+    }
+}
+
 TEST_CASE("VertexGrid: vertices and queries far outside the domain, still exact") {
     Random rng(11);
     auto far_point = [&](double max_scale) {
