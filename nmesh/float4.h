@@ -48,10 +48,18 @@ inline F4 load(const Vec3& p) { return {{p.x, p.y, p.z, 0.0f}}; }
 inline F4 operator+(F4 a, F4 b) { return {{a.v[0] + b.v[0], a.v[1] + b.v[1], a.v[2] + b.v[2], 0.0f}}; }
 inline F4 operator-(F4 a, F4 b) { return {{a.v[0] - b.v[0], a.v[1] - b.v[1], a.v[2] - b.v[2], 0.0f}}; }
 inline F4 operator*(F4 a, float s) { return {{a.v[0] * s, a.v[1] * s, a.v[2] * s, 0.0f}}; }
+inline F4 operator*(F4 a, F4 b) { return {{a.v[0] * b.v[0], a.v[1] * b.v[1], a.v[2] * b.v[2], 0.0f}}; }
+inline F4 yzx(F4 a) { return {{a.v[1], a.v[2], a.v[0], 0.0f}}; }
 inline F4 cross(F4 a, F4 b) {
     return {{a.v[1] * b.v[2] - a.v[2] * b.v[1], a.v[2] * b.v[0] - a.v[0] * b.v[2], a.v[0] * b.v[1] - a.v[1] * b.v[0], 0.0f}};
 }
 #endif
+// cross(a, b) with its lanes in the order (z, x, y), from a, b and their rotations ra = yzx(a),
+// rb = yzx(b): each lane is the same difference of the same two products as in cross(), so
+// yzx(cross_zxy(a, ra, b, rb)) is cross(a, b) bit for bit, and yzx() of a sum of such terms is
+// the same sum of cross products. A running sum over consecutive vectors thus rotates each vector
+// once and the sum once, where cross() rotates both operands twice.
+inline F4 cross_zxy(F4 a, F4 ra, F4 b, F4 rb) { return a * rb - ra * b; }
 inline Vec3 to_vec3(F4 a) { return {a[0], a[1], a[2]}; }
 inline float dot(F4 a, F4 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 

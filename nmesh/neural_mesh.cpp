@@ -92,7 +92,7 @@ const std::uint32_t* NeuralMesh::walk_ring(Vertex v, std::vector<std::uint32_t>&
 // Choice: all neighbours are moved from the positions they had before this step (a Jacobi
 // update), so the result does not depend on the order of the ring.
 void NeuralMesh::smooth_neighbourhood(Vertex w) {
-    using namespace float4;  // F4, load, cross, dot, to_vec3
+    using namespace float4;  // F4, load, yzx, cross_zxy, dot, to_vec3
     const float an = float(params_.alpha_n);
     if (an == 0.0f) return;
     std::uint32_t k = 0;
@@ -120,20 +120,29 @@ void NeuralMesh::smooth_neighbourhood(Vertex w) {
         std::uint32_t m = 0;
         const std::uint32_t* r = ring_of(Vertex(v), ring2_, m);
         std::uint32_t s = 0;
-        while (r[s] != w.idx) ++s;
-        const F4 a0 = pw - p;
-        const F4 a1 = load(pos[r[s + 1 == m ? 0 : s + 1]]) - p;  // x
+        if (r == rings_.neighbours(Vertex(v))) {
+            s = rings_.position_of(Vertex(v), w.idx);
+        } else {
+            while (r[s] != w.idx) ++s;
+        }
+        // The cross products are summed with their lanes rotated (float4::cross_zxy), and the sum
+        // rotated back once: the same bits as summing cross().
+        const F4 a0 = pw - p, r0 = yzx(a0);
+        const F4 a1 = load(pos[r[s + 1 == m ? 0 : s + 1]]) - p, r1 = yzx(a1);  // x
+        const F4 ay = load(pos[r[s == 0 ? m - 1 : s - 1]]) - p;                // y
         F4 sum = a0 + a1;
-        F4 normal = cross(a0, load(pos[r[s == 0 ? m - 1 : s - 1]]) - p) + cross(a1, a0);  // closes at y
-        F4 prev = a1;
+        F4 rotated = cross_zxy(a0, r0, ay, yzx(ay)) + cross_zxy(a1, r1, a0, r0);  // closes at y
+        F4 prev = a1, rprev = r1;
         std::uint32_t t = s + 2 >= m ? s + 2 - m : s + 2;
         for (std::uint32_t j = 2; j < m; ++j) {
-            const F4 a = load(pos[r[t]]) - p;
+            const F4 a = load(pos[r[t]]) - p, ra = yzx(a);
             sum = sum + a;
-            normal = normal + cross(a, prev);
+            rotated = rotated + cross_zxy(a, ra, prev, rprev);
             prev = a;
+            rprev = ra;
             t = t + 1 == m ? 0 : t + 1;
         }
+        const F4 normal = yzx(rotated);
         const F4 laplacian = sum * (1.0f / float(m));  // eq. (5)
         const float nn = dot(normal, normal);
         const F4 tangential = nn > 0.0f ? laplacian - normal * (dot(laplacian, normal) / nn)  // eq. (4)

@@ -142,3 +142,41 @@ TEST_CASE("refreshing what each operation changes keeps the cache equal to the m
     CHECK(collapses > 100);
     CHECK(flips > 100);
 }
+
+TEST_CASE("position_of finds each neighbour and nothing else, whatever the stale lanes and the count hold") {
+    // Splits and collapses leave ids of former neighbours in the lanes past a ring's count, and
+    // the count shares the line with the ids: neither may be mistaken for a neighbour. Every id
+    // of the mesh is looked up in sampled rings, against a search of the walked ring.
+    Mesh m = nmesh::test::icosahedron();
+    RingCache cache;
+    refresh_all(cache, m);
+    Random rng(29);
+    int lookups = 0, found = 0;
+    for (int step = 0; step < 1500; ++step) {
+        const Halfedge h(rng.below(m.halfedge_capacity()));
+        if (m.is_removed(h)) continue;
+        if (rng.below(2) == 0 || m.n_vertices() < 20) {
+            const Vertex b = m.from(h);
+            const Vertex a = m.try_split(h, m.ccw_rotated(m.ccw_rotated(h)), (m.position(b) + m.position(m.to(h))) * 0.5f);
+            if (!a.valid()) continue;
+            cache.refresh_around(m, a);
+            cache.refresh(m, b);
+        } else {
+            const Vertex b = m.to(h);
+            if (!m.try_collapse(h)) continue;
+            cache.refresh_around(m, b);
+        }
+        const Vertex v(rng.below(m.vertex_capacity()));
+        if (m.is_removed(v) || cache.count(v) == 0) continue;
+        const std::vector<std::uint32_t> ring = walked_ring(m, v);
+        for (std::uint32_t id = 0; id < m.vertex_capacity() + 2; ++id) {
+            std::uint32_t expected = 0;
+            while (expected < ring.size() && ring[expected] != id) ++expected;
+            REQUIRE(cache.position_of(v, id) == expected);
+            ++lookups;
+            found += expected < ring.size();
+        }
+    }
+    CHECK(lookups > 10000);
+    CHECK(found > 1000);
+}
