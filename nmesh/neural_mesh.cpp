@@ -45,7 +45,7 @@ NeuralMesh::NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bound
     swap_dm_.reserve(64);
 }
 
-void NeuralMesh::set_position(Vertex v, const Vec3& p) {
+inline void NeuralMesh::set_position(Vertex v, const Vec3& p) {
     mesh_.set_position(v, p);
     grid_.move(v.idx, p);
 }
