@@ -39,16 +39,17 @@
 // /proc/self/clear_refs. The cloud (PointCloud: 12 bytes per point) is in memory throughout and is
 // never counted. Two measurements, each from the same fresh state (the cloud just generated):
 //   - the input storage, in a forked child: reconstruct() with a 4-vertex target (the tetrahedron),
-//     VmRSS and VmHWM read from the progress report that reconstruct() makes at its end, while
-//     the engine is still alive, minus VmRSS before the call. The resident memory the engine adds
+//     VmRSS and VmHWM read from the progress report that reconstruct() makes when the learning
+//     ends, while the engine is still alive, minus VmRSS before the call. The resident memory the engine adds
 //     per input point (the nearest-point index, which holds a sorted copy of the normalised points;
 //     the engine normalises its samples on the fly and keeps no copy of its own),
 //     and the peak per input point while the engine is built (the index's temporary arrays
 //     included). The index alone per PointGrid::memory_bytes is given too;
 //   - the mesh, in the first timed run: VmHWM from the first progress report (65,536
 //     iterations, after the engine is built) to the return of reconstruct(), minus VmRSS before
-//     the call, minus the input storage. Bytes per vertex = that / N. It includes the output mesh
-//     that reconstruct() builds at its end (reported on its own as output bytes per vertex).
+//     the call, minus the input storage. Bytes per vertex = that / N. reconstruct() builds the
+//     output mesh (reported on its own as output bytes per vertex) after it has freed the
+//     engine, so the peak is that of the learning unless the mesh and its output copy weigh more.
 // (peak - before) / N is the whole call's peak over VmRSS before it, input storage included.
 #include <algorithm>
 #include <cstdarg>
@@ -249,8 +250,8 @@ void append_csv(const std::string& path, const std::string& line) {
 
 // The input storage (see the top of the file), measured in a forked child so that the parent's
 // heap is not disturbed: {resident bytes the engine adds, peak bytes while it is built}, both
-// over VmRSS before the call, read at the progress report reconstruct() makes at its end (the
-// engine still alive) with a 4-vertex target (the tetrahedron only: 4 Cvs iterations).
+// over VmRSS before the call, read at the progress report reconstruct() makes when the learning
+// ends (the engine still alive) with a 4-vertex target (the tetrahedron only: 4 Cvs iterations).
 std::pair<double, double> input_memory(const nmesh::PointCloud& cloud) {
     int fds[2];
     if (pipe(fds) != 0) throw nmesh::Error("input_memory: cannot create a pipe");

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "nmesh/activity_index.h"
@@ -51,6 +52,10 @@ public:
     void set_profiling(bool on) { profiling_ = on; }
 
     const Mesh& mesh() const { return mesh_; }
+    // Moves the mesh out, for when the learning is over: the engine is then only fit to be
+    // destroyed (which frees its grid, activity index, ring cache and cloud index before the
+    // caller builds more from the mesh).
+    Mesh take_mesh() { return std::move(mesh_); }
     const VertexGrid& grid() const { return grid_; }
     const ActivityIndex& activity() const { return activity_; }
     const RingCache& rings() const { return rings_; }

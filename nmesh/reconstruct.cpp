@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "nmesh/error.h"
@@ -98,7 +99,9 @@ Result reconstruct(const PointCloud& cloud, const Parameters& params, const Call
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
     const Normalization norm(cloud);
-    NeuralMesh engine(cloud.points, norm.bounds, params, norm.transform);
+    // On the heap, so that it can be destroyed, and its memory freed, as soon as the learning ends.
+    auto engine_ptr = std::make_unique<NeuralMesh>(cloud.points, norm.bounds, params, norm.transform);
+    NeuralMesh& engine = *engine_ptr;
     engine.set_profiling(callbacks.profile);
 
     std::vector<std::uint32_t> snapshots = callbacks.snapshot_vertices;
@@ -174,23 +177,30 @@ Result reconstruct(const PointCloud& cloud, const Parameters& params, const Call
         }
     }
     const double learning_seconds = elapsed();
+    result.stats = engine.stats();
+    // The last progress report: the learning is over (the finishing stage that may follow makes
+    // none).
+    if (callbacks.progress && !result.cancelled) report(params.settle > 0.0);
+    // The learnt mesh leaves the engine, which is destroyed: what follows (the finishing stage,
+    // the output mesh) does not add to the memory of the grid, activity index and ring cache.
+    Mesh learnt = engine.take_mesh();
+    engine_ptr.reset();
     // The finishing stage (nmesh/finish.h), on a copy of the learnt mesh; should it ever fail to
     // keep the vertex count, the learnt mesh is returned as it is.
     bool finished = false;
     if (!result.cancelled && params.finish) {
-        Mesh mesh = engine.mesh();
+        Mesh mesh = learnt;
         finish_mesh(mesh, norm.normalised(cloud));
-        if (mesh.n_vertices() == engine.mesh().n_vertices()) {
+        if (mesh.n_vertices() == learnt.n_vertices()) {
+            learnt = Mesh();
             result.mesh = norm.to_input(mesh.to_indexed());
             finished = true;
         }
     }
-    if (!finished) result.mesh = norm.to_input(engine.mesh().to_indexed());
-    result.stats = engine.stats();
+    if (!finished) result.mesh = norm.to_input(learnt.to_indexed());
     result.stats.seconds = learning_seconds;
     result.stats.seconds_finish = params.finish && !result.cancelled ? elapsed() - learning_seconds : 0.0;
     result.stats.finished = finished;
-    if (callbacks.progress && !result.cancelled) report(params.settle > 0.0);
     return result;
 }
 

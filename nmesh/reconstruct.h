@@ -65,7 +65,8 @@ struct Statistics {
            seconds_collapse = 0.0, seconds_swap = 0.0;
 };
 
-// Reported to the progress callback about every 2^16 iterations.
+// Reported to the progress callback about every 2^16 iterations, and once when the learning
+// ends (before the finishing stage, which reports no progress).
 struct Progress {
     std::uint32_t vertices = 0;
     std::uint32_t target_vertices = 0;
