@@ -5,22 +5,19 @@
 // Each lane computes exactly what the Vec3 operations compute, in the same order (a component of
 // a cross product is still a.y * b.z - a.z * b.y), so the results are the same bits as with Vec3;
 // only the instruction count falls. Internal to the library's .cpp files. Defining
-// NMESH_PLAIN_FLOAT4 selects the plain lanes everywhere (to check that both give the same bits).
+// NMESH_NO_SIMD selects the plain lanes (nmesh/simd.h).
 #pragma once
 
+#include "nmesh/simd.h"
 #include "nmesh/vec3.h"
-
-#if (defined(__GNUC__) || defined(__clang__)) && !defined(NMESH_PLAIN_FLOAT4) && defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 namespace nmesh {
 namespace float4 {
 
-#if (defined(__GNUC__) || defined(__clang__)) && !defined(NMESH_PLAIN_FLOAT4)
+#if NMESH_VECTOR_TYPES
 typedef float F4 __attribute__((vector_size(16)));
 typedef int I4 __attribute__((vector_size(16)));
-#if defined(__SSE2__)
+#if NMESH_SSE2
 // x and y in one 8-byte load, z in a 4-byte one: three instructions where the element-wise
 // initialiser below takes five (the smoothing step loads about 45 positions per iteration).
 inline F4 load(const Vec3& p) {

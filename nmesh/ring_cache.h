@@ -17,12 +17,9 @@
 #include <string>
 #include <vector>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 #include "nmesh/mesh.h"
 #include "nmesh/prefetch.h"
+#include "nmesh/simd.h"
 
 namespace nmesh {
 
@@ -54,7 +51,7 @@ public:
     // Precondition: count(v) != 0. Branch-free on SSE2: four compares over the whole line.
     std::uint32_t position_of(Vertex v, std::uint32_t id) const {
         const Line& line = lines_[v.idx];
-#if defined(__SSE2__)
+#if NMESH_SSE2
         const __m128i* words = reinterpret_cast<const __m128i*>(&line);
         const __m128i key = _mm_set1_epi32(int(id));
         unsigned bits = 0;

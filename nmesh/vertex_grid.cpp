@@ -313,7 +313,7 @@ void VertexGrid::scan_cell(const Cell& cell, Query& query) const {
     std::uint64_t best = query.best;
     std::uint32_t fill = (cell.count - 1) % kBlockEntries + 1;
     std::uint32_t blocks = (cell.count + kBlockEntries - 1) / kBlockEntries;
-#if defined(__SSE2__)
+#if NMESH_SSE2
     const __m128 qx = _mm_set1_ps(query.q.x), qy = _mm_set1_ps(query.q.y), qz = _mm_set1_ps(query.q.z);
     for (std::uint32_t b = cell.head;; b = block_next_[b], fill = kBlockEntries) {
         const Block& block = blocks_[b];

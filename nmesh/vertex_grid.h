@@ -32,12 +32,9 @@
 #include <limits>
 #include <vector>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 #include "nmesh/bounding_box.h"
 #include "nmesh/prefetch.h"
+#include "nmesh/simd.h"
 #include "nmesh/vec3.h"
 
 namespace nmesh {
@@ -160,7 +157,7 @@ private:
         if (!(t >= 0.0)) return 0;  // also maps NaN to 0, keeping the conversion defined
         return t < double(kMaxIndex) ? std::uint32_t(t) : kMaxIndex;
     }
-#if defined(__SSE2__)
+#if NMESH_SSE2
     // axis_index() for the three axes at once, x and y in the two lanes of one register: the same
     // operations on the same doubles, so the same key (max(t, 0) with t first gives 0 for a NaN t,
     // as axis_index() does). A vertex move computes one key: this halves the cost of a move.
