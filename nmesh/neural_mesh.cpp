@@ -103,7 +103,7 @@ void NeuralMesh::smooth_neighbourhood(Vertex w) {
     // What this step reads first is known from w's ring: ask for all of it at once, so that the
     // cache misses of a large mesh overlap instead of following one another: the ring vertices'
     // lines, positions and grid slots. (Asking for the positions of their own neighbours as well,
-    // once the lines arrive, cost more than it saved: 13% slower at 30,000 vertices, 10-25% at
+    // once the lines arrive, cost more than it saved: 13% slower at 30,000 vertices, 7-25% at
     // 100,000, no clear difference at 300,000.)
     for (std::uint32_t i = 0; i < k; ++i) {
         rings_.prefetch(Vertex(ring[i]));
