@@ -605,7 +605,10 @@ std::uint64_t flip_to_delaunay(Mesh& mesh, float max_dihedral_deg) {
 
 // ---- pass 1b: tangential relaxation, pulled towards the cloud -------------------------------------
 
-CloudSurface::CloudSurface(const std::vector<Vec3>& points, const Mesh& mesh) : points_(points), index_(points) {
+CloudSurface::CloudSurface(const std::vector<Vec3>& points, const Mesh& mesh, const PointGrid* index)
+    : points_(points),
+      own_index_(index ? nullptr : std::make_unique<PointGrid>(points)),
+      index_(index ? index : own_index_.get()) {
     const std::vector<Vertex> verts = alive_vertices(mesh);
     std::vector<Vec3> pos(verts.size());
     for (std::size_t i = 0; i < verts.size(); ++i) pos[i] = mesh.position(verts[i]);
@@ -615,7 +618,7 @@ CloudSurface::CloudSurface(const std::vector<Vec3>& points, const Mesh& mesh) : 
 }
 
 Vec3 CloudSurface::pull(const Vec3& q, const Vec3& n, float limit, float reach) const {
-    return pull(q, n, limit, reach, index_.find_nearest(q));
+    return pull(q, n, limit, reach, index_->find_nearest(q));
 }
 
 Vec3 CloudSurface::pull(const Vec3& q, const Vec3& n, float limit, float reach, const NearestPoint& near) const {
@@ -908,7 +911,8 @@ bool is_flat(const std::vector<Vec3>& cloud) {
     return extent <= 1e-6f * distance(a, b);
 }
 
-FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const FinishOptions& options) {
+FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const FinishOptions& options,
+                         const PointGrid* cloud_index) {
     const auto start = std::chrono::steady_clock::now();
     FinishReport report;
     if (is_flat(cloud)) {
@@ -918,7 +922,7 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
     const Mesh learnt = options.repair_max_rounds > 0 ? mesh : Mesh();
     // The cloud's point normals come from the learnt mesh, before any pass.
     std::unique_ptr<CloudSurface> surface;
-    if (options.project) surface = std::make_unique<CloudSurface>(cloud, mesh);
+    if (options.project) surface = std::make_unique<CloudSurface>(cloud, mesh, cloud_index);
     const CloudSurface* pull = surface.get();
     for (int r = 0; r < options.rounds; ++r) {
         report.flips += flip_to_delaunay(mesh, options.flip_max_dihedral_deg);

@@ -29,6 +29,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -78,7 +79,11 @@ struct FinishReport {
 // Runs the stage on `mesh` (positions in the same frame as `cloud`, which must not be empty).
 // A flat cloud (is_flat) is left alone: its mesh is two coinciding sheets, every triangle touching
 // one of the other sheet, and no normal tells the sides apart.
-FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const FinishOptions& options = {});
+// `cloud_index`: a nearest-point index over exactly the points of `cloud`, in the same order and
+// frame (for instance the learning engine's, built over the same points through a
+// PointTransform), which then is not built again; null: the stage builds its own.
+FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const FinishOptions& options = {},
+                         const PointGrid* cloud_index = nullptr);
 
 // Whether all the points lie in one plane (up to 1e-6 of their extent).
 bool is_flat(const std::vector<Vec3>& cloud);
@@ -97,8 +102,9 @@ std::uint64_t flip_to_delaunay(Mesh& mesh, float max_dihedral_deg = 20.0f);
 // than a triangle apart.
 class CloudSurface {
 public:
-    // `points` must outlive the object. O(n) for n points.
-    CloudSurface(const std::vector<Vec3>& points, const Mesh& mesh);
+    // `points` (and `index`, a nearest-point index over exactly those points, or null to build
+    // one) must outlive the object. O(n) for n points.
+    CloudSurface(const std::vector<Vec3>& points, const Mesh& mesh, const PointGrid* index = nullptr);
     // q moved along the unit normal n towards the plane through its nearest cloud point (normal
     // n), by at most `limit`; q itself when that point faces the other way (its normal against n)
     // or lies farther than `reach` from q (q is over a hole in the scan).
@@ -106,11 +112,12 @@ public:
     // The same with the nearest cloud point to q already known.
     Vec3 pull(const Vec3& q, const Vec3& n, float limit, float reach, const NearestPoint& near) const;
     const std::vector<Vec3>& points() const { return points_; }
-    const PointGrid& index() const { return index_; }
+    const PointGrid& index() const { return *index_; }
 
 private:
     const std::vector<Vec3>& points_;
-    PointGrid index_;
+    std::unique_ptr<PointGrid> own_index_;  // when none was given
+    const PointGrid* index_;
     std::vector<Vec3> normals_;
 };
 

@@ -56,6 +56,9 @@ public:
     // destroyed (which frees its grid, activity index, ring cache and cloud index before the
     // caller builds more from the mesh).
     Mesh take_mesh() { return std::move(mesh_); }
+    // Moves the nearest-point index over the (transformed) cloud out, or null when the engine has
+    // none (it builds one only for the edge swap); the same conditions as take_mesh().
+    std::unique_ptr<PointGrid> take_cloud_index() { return std::move(cloud_index_); }
     const VertexGrid& grid() const { return grid_; }
     const ActivityIndex& activity() const { return activity_; }
     const RingCache& rings() const { return rings_; }

@@ -184,13 +184,17 @@ Result reconstruct(const PointCloud& cloud, const Parameters& params, const Call
     // The learnt mesh leaves the engine, which is destroyed: what follows (the finishing stage,
     // the output mesh) does not add to the memory of the grid, activity index and ring cache.
     Mesh learnt = engine.take_mesh();
+    // The finishing stage needs a nearest-point index over the normalised cloud: the engine's,
+    // when it has one (the same points, transformed on the fly), is kept for it.
+    std::unique_ptr<PointGrid> cloud_index = params.finish ? engine.take_cloud_index() : nullptr;
     engine_ptr.reset();
     // The finishing stage (nmesh/finish.h), on a copy of the learnt mesh; should it ever fail to
     // keep the vertex count, the learnt mesh is returned as it is.
     bool finished = false;
     if (!result.cancelled && params.finish) {
         Mesh mesh = learnt;
-        finish_mesh(mesh, norm.normalised(cloud));
+        finish_mesh(mesh, norm.normalised(cloud), {}, cloud_index.get());
+        cloud_index.reset();
         if (mesh.n_vertices() == learnt.n_vertices()) {
             learnt = Mesh();
             result.mesh = norm.to_input(mesh.to_indexed());

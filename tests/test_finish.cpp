@@ -16,6 +16,8 @@
 #include "nmesh/mesh_check.h"
 #include "nmesh/metrics.h"
 #include "nmesh/neural_mesh.h"
+#include "nmesh/point_grid.h"
+#include "nmesh/point_transform.h"
 #include "nmesh/random.h"
 #include "nmesh/reconstruct.h"
 
@@ -384,6 +386,43 @@ TEST_CASE("with the stage off, reconstruct gives the learning engine's mesh bit 
     const Result finished = reconstruct(cloud, p);
     CHECK(finished.mesh.positions.size() == 300);
     CHECK_FALSE(finished.mesh.triangles == direct.triangles);
+}
+
+TEST_CASE("the stage run on the engine's cloud index gives the mesh it gives on its own index") {
+    // reconstruct() hands the learning engine's nearest-point index (built over the normalised
+    // points through a PointTransform) to the stage instead of letting it build another. With a
+    // cloud that the normalisation leaves as it is (as above), the engine and the stage can be
+    // run by hand on the cloud itself, the stage building its own index.
+    PointCloud cloud = sphere_cloud(3000, 0.2f);
+    for (const Vec3& e : {Vec3{0.25f, 0, 0}, Vec3{-0.25f, 0, 0}, Vec3{0, 0.25f, 0}, Vec3{0, -0.25f, 0},
+                          Vec3{0, 0, 0.25f}, Vec3{0, 0, -0.25f}})
+        cloud.points.push_back(e);
+    Parameters p;
+    p.target_vertices = 300;
+    REQUIRE(p.edge_swap);  // the engine has an index only for the edge swap
+    const Result r = reconstruct(cloud, p);
+    REQUIRE(r.stats.finished);
+    NeuralMesh engine(cloud.points, cloud.bounds(), p);
+    while (engine.mesh().n_vertices() < p.target_vertices) engine.iterate();
+    Mesh mesh = engine.take_mesh();
+    const Mesh learnt = mesh;
+    finish_mesh(mesh, cloud.points);
+    const IndexedMesh direct = mesh.to_indexed();
+    CHECK(r.mesh.triangles == direct.triangles);
+    REQUIRE(r.mesh.positions.size() == direct.positions.size());
+    CHECK(std::equal(r.mesh.positions.begin(), r.mesh.positions.end(), direct.positions.begin()));
+
+    // The same through finish_mesh's argument, with an index built through a transform over
+    // points that it maps exactly onto the cloud's (halved, then doubled).
+    const PointTransform twice{Vec3{0.0f, 0.0f, 0.0f}, 2.0f};
+    std::vector<Vec3> raw;
+    for (const Vec3& q : cloud.points) raw.push_back(q * 0.5f);
+    Mesh again = learnt;
+    const PointGrid index(raw, twice);
+    finish_mesh(again, cloud.points, {}, &index);
+    const IndexedMesh via_index = again.to_indexed();
+    CHECK(via_index.triangles == direct.triangles);
+    CHECK(via_index.positions == direct.positions);
 }
 
 TEST_CASE("the finished bunny is a closed manifold without self-intersections or many thin triangles") {
