@@ -186,7 +186,8 @@ Result reconstruct(const PointCloud& cloud, const Parameters& params, const Call
     Mesh learnt = engine.take_mesh();
     // The finishing stage needs a nearest-point index over the normalised cloud: the engine's,
     // when it has one (the same points, transformed on the fly), is kept for it.
-    std::unique_ptr<PointGrid> cloud_index = params.finish ? engine.take_cloud_index() : nullptr;
+    std::unique_ptr<PointGrid> cloud_index =
+        !result.cancelled && params.finish ? engine.take_cloud_index() : nullptr;
     engine_ptr.reset();
     // The finishing stage (nmesh/finish.h), on a copy of the learnt mesh; should it ever fail to
     // keep the vertex count, the learnt mesh is returned as it is.
