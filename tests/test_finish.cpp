@@ -364,13 +364,28 @@ TEST_CASE("the stage keeps a closed manifold with the same vertex count on sever
     }
 }
 
-TEST_CASE("with the stage off, reconstruct gives the learning engine's mesh bit for bit") {
-    // A cloud whose bounding box is centred on the origin with a diagonal in [0.5, 1): the
-    // normalisation is then the identity, and the engine can be run on the cloud as it is.
+namespace {
+
+// A cloud whose bounding box is centred on the origin with a diagonal in [0.5, 1): the
+// normalisation is then the identity, and the engine can be run on the cloud as it is.
+PointCloud cloud_left_as_it_is() {
     PointCloud cloud = sphere_cloud(3000, 0.2f);
     for (const Vec3& e : {Vec3{0.25f, 0, 0}, Vec3{-0.25f, 0, 0}, Vec3{0, 0.25f, 0}, Vec3{0, -0.25f, 0},
                           Vec3{0, 0, 0.25f}, Vec3{0, 0, -0.25f}})
         cloud.points.push_back(e);
+    return cloud;
+}
+
+void require_same_mesh(const IndexedMesh& a, const IndexedMesh& b) {
+    CHECK(a.triangles == b.triangles);
+    REQUIRE(a.positions.size() == b.positions.size());
+    CHECK(std::equal(a.positions.begin(), a.positions.end(), b.positions.begin()));
+}
+
+}  // namespace
+
+TEST_CASE("with the stage off, reconstruct gives the learning engine's mesh bit for bit") {
+    const PointCloud cloud = cloud_left_as_it_is();
     Parameters p;
     p.target_vertices = 300;
     p.finish = false;
@@ -378,9 +393,7 @@ TEST_CASE("with the stage off, reconstruct gives the learning engine's mesh bit 
     NeuralMesh engine(cloud.points, cloud.bounds(), p);
     while (engine.mesh().n_vertices() < p.target_vertices) engine.iterate();
     const IndexedMesh direct = engine.mesh().to_indexed();
-    CHECK(r.mesh.triangles == direct.triangles);
-    REQUIRE(r.mesh.positions.size() == direct.positions.size());
-    CHECK(std::equal(r.mesh.positions.begin(), r.mesh.positions.end(), direct.positions.begin()));
+    require_same_mesh(r.mesh, direct);
     // With the stage (the default) the mesh differs, with the same vertex count.
     p.finish = true;
     const Result finished = reconstruct(cloud, p);
@@ -393,10 +406,7 @@ TEST_CASE("the stage run on the engine's cloud index gives the mesh it gives on 
     // points through a PointTransform) to the stage instead of letting it build another. With a
     // cloud that the normalisation leaves as it is (as above), the engine and the stage can be
     // run by hand on the cloud itself, the stage building its own index.
-    PointCloud cloud = sphere_cloud(3000, 0.2f);
-    for (const Vec3& e : {Vec3{0.25f, 0, 0}, Vec3{-0.25f, 0, 0}, Vec3{0, 0.25f, 0}, Vec3{0, -0.25f, 0},
-                          Vec3{0, 0, 0.25f}, Vec3{0, 0, -0.25f}})
-        cloud.points.push_back(e);
+    const PointCloud cloud = cloud_left_as_it_is();
     Parameters p;
     p.target_vertices = 300;
     REQUIRE(p.edge_swap);  // the engine has an index only for the edge swap
@@ -408,9 +418,7 @@ TEST_CASE("the stage run on the engine's cloud index gives the mesh it gives on 
     const Mesh learnt = mesh;
     finish_mesh(mesh, cloud.points);
     const IndexedMesh direct = mesh.to_indexed();
-    CHECK(r.mesh.triangles == direct.triangles);
-    REQUIRE(r.mesh.positions.size() == direct.positions.size());
-    CHECK(std::equal(r.mesh.positions.begin(), r.mesh.positions.end(), direct.positions.begin()));
+    require_same_mesh(r.mesh, direct);
 
     // The same through finish_mesh's argument, with an index built through a transform over
     // points that it maps exactly onto the cloud's (halved, then doubled).
@@ -420,9 +428,7 @@ TEST_CASE("the stage run on the engine's cloud index gives the mesh it gives on 
     Mesh again = learnt;
     const PointGrid index(raw, twice);
     finish_mesh(again, cloud.points, {}, &index);
-    const IndexedMesh via_index = again.to_indexed();
-    CHECK(via_index.triangles == direct.triangles);
-    CHECK(via_index.positions == direct.positions);
+    require_same_mesh(again.to_indexed(), direct);
 }
 
 TEST_CASE("the finished bunny is a closed manifold without self-intersections or many thin triangles") {
