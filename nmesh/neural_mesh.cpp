@@ -36,6 +36,7 @@ NeuralMesh::NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bound
     next_removal_ = std::uint64_t(params_.cec) * mesh_.n_vertices();
     for (Vec3& a : ahead_) a = transform_(points_[rng_.below(std::uint32_t(points_.size()))]);
     ahead_index_ = rng_.below(std::uint32_t(points_.size()));
+    ahead_cell_ = grid_.prefetch_query(ahead_[1]);
     ring_.reserve(64);
     ring2_.reserve(64);
     updated_.resize(16);
@@ -61,8 +62,8 @@ Vec3 NeuralMesh::next_sample() {
     ahead_[1] = transform_(points_[ahead_index_]);  // each sample is normalised once
     ahead_index_ = rng_.below(std::uint32_t(points_.size()));
     prefetch_for_read(&points_[ahead_index_]);
-    grid_.prefetch_query(ahead_[1]);
-    grid_.prefetch_cell(ahead_[0]);
+    grid_.prefetch_cell(ahead_cell_);  // ahead_[0]'s cell, found when it was ahead_[1]
+    ahead_cell_ = grid_.prefetch_query(ahead_[1]);
     return x;
 }
 
@@ -120,7 +121,7 @@ void NeuralMesh::smooth_neighbourhood(Vertex w) {
         std::uint32_t m = 0;
         const std::uint32_t* r = ring_of(Vertex(v), ring2_, m);
         std::uint32_t s = 0;
-        if (r == rings_.neighbours(Vertex(v))) {
+        if (rings_.count(Vertex(v)) != 0) {  // cached
             s = rings_.position_of(Vertex(v), w.idx);
         } else {
             while (r[s] != w.idx) ++s;

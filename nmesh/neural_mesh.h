@@ -93,6 +93,7 @@ private:
     Random rng_;
     Vec3 ahead_[2];                     // the next two samples, normalised
     std::uint32_t ahead_index_ = 0;     // the index of the one after them, drawn in advance
+    std::uint64_t ahead_cell_ = 0;      // ahead_[1]'s grid cell (VertexGrid::prefetch_query)
     Statistics stats_;
     bool profiling_ = false;
     std::uint64_t iteration_ = 0;

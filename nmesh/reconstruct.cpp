@@ -177,6 +177,7 @@ Result reconstruct(const PointCloud& cloud, const Parameters& params, const Call
         }
     }
     const double learning_seconds = elapsed();
+    const bool finish = !result.cancelled && params.finish;
     result.stats = engine.stats();
     // The last progress report: the learning is over (the finishing stage that may follow makes
     // none).
@@ -186,13 +187,12 @@ Result reconstruct(const PointCloud& cloud, const Parameters& params, const Call
     Mesh learnt = engine.take_mesh();
     // The finishing stage needs a nearest-point index over the normalised cloud: the engine's,
     // when it has one (the same points, transformed on the fly), is kept for it.
-    std::unique_ptr<PointGrid> cloud_index =
-        !result.cancelled && params.finish ? engine.take_cloud_index() : nullptr;
+    std::unique_ptr<PointGrid> cloud_index = finish ? engine.take_cloud_index() : nullptr;
     engine_ptr.reset();
     // The finishing stage (nmesh/finish.h), on a copy of the learnt mesh; should it ever fail to
     // keep the vertex count, the learnt mesh is returned as it is.
     bool finished = false;
-    if (!result.cancelled && params.finish) {
+    if (finish) {
         Mesh mesh = learnt;
         finish_mesh(mesh, norm.normalised(cloud), {}, cloud_index.get());
         cloud_index.reset();
@@ -204,7 +204,7 @@ Result reconstruct(const PointCloud& cloud, const Parameters& params, const Call
     }
     if (!finished) result.mesh = norm.to_input(learnt.to_indexed());
     result.stats.seconds = learning_seconds;
-    result.stats.seconds_finish = params.finish && !result.cancelled ? elapsed() - learning_seconds : 0.0;
+    result.stats.seconds_finish = finish ? elapsed() - learning_seconds : 0.0;
     result.stats.finished = finished;
     return result;
 }

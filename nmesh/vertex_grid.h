@@ -95,11 +95,16 @@ public:
 
     // Hints that start loading memory a later call will need; no effect on any answer. The
     // learning loop knows its next sample, and the vertices it is about to move, ahead of time.
-    // prefetch_query(q): the table slot of q's cell; prefetch_cell(q), best called once that
-    // slot is in the cache: the first block of the cell's vertices, when the cell is occupied.
-    void prefetch_query(const Vec3& q) const { prefetch_for_read(&table_[home(cell_key(q))]); }
-    void prefetch_cell(const Vec3& q) const {
-        const std::uint32_t s = find_cell(cell_key(q));
+    // prefetch_query(q): the table slot of q's cell, which it returns; prefetch_cell(cell), best
+    // called once that slot is in the cache: the first block of the cell's vertices, when the
+    // cell is occupied (after a rebuild in between, some other cell's, or none).
+    std::uint64_t prefetch_query(const Vec3& q) const {
+        const std::uint64_t key = cell_key(q);
+        prefetch_for_read(&table_[home(key)]);
+        return key;
+    }
+    void prefetch_cell(std::uint64_t cell) const {
+        const std::uint32_t s = find_cell(cell);
         if (s != kNone) prefetch_for_read(&blocks_[table_[s].head]);
     }
     void prefetch_move(std::uint32_t id) const { prefetch_for_read(&slots_[id]); }
