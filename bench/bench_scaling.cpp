@@ -40,10 +40,10 @@
 // never counted. Two measurements, each from the same fresh state (the cloud just generated):
 //   - the input storage, in a forked child: reconstruct() with a 4-vertex target (the tetrahedron),
 //     VmRSS and VmHWM read from the progress report that reconstruct() makes when the learning
-//     ends, while the engine is still alive, minus VmRSS before the call. The resident memory the engine adds
-//     per input point (the nearest-point index, which holds a sorted copy of the normalised points;
-//     the engine normalises its samples on the fly and keeps no copy of its own),
-//     and the peak per input point while the engine is built (the index's temporary arrays
+//     ends, while the engine is still alive, minus VmRSS before the call. The resident memory the
+//     engine adds per input point (the nearest-point index, which holds a sorted copy of the
+//     normalised points; the engine normalises its samples on the fly and keeps no copy of its
+//     own), and the peak per input point while the engine is built (the index's temporary arrays
 //     included). The index alone per PointGrid::memory_bytes is given too;
 //   - the mesh, in the first timed run: VmHWM from the first progress report (65,536
 //     iterations, after the engine is built) to the return of reconstruct(), minus VmRSS before
