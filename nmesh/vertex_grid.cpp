@@ -321,16 +321,13 @@ void VertexGrid::scan_cell(const Cell& cell, Query& query) const {
         const __m128 dy = _mm_sub_ps(qy, _mm_load_ps(block.y));
         const __m128 dz = _mm_sub_ps(qz, _mm_load_ps(block.z));
         const __m128 d2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
-        const __m128 limit = _mm_castsi128_ps(_mm_set1_epi32(int(std::uint32_t(best >> 32))));
-        unsigned lanes = unsigned(_mm_movemask_ps(_mm_cmple_ps(d2, limit))) & ((1u << fill) - 1u);
-        if (lanes != 0) {
-            alignas(16) std::uint32_t bits[kBlockEntries];
-            _mm_store_si128(reinterpret_cast<__m128i*>(bits), _mm_castps_si128(d2));
-            for (; lanes != 0; lanes &= lanes - 1) {
-                const unsigned k = unsigned(__builtin_ctz(lanes));
-                const std::uint64_t key = std::uint64_t(bits[k]) << 32 | block.id[k];
-                best = key < best ? key : best;
-            }
+        // The lanes past the cell's count get all bits set: a key above any vertex's.
+        const __m128i unused = _mm_cmplt_epi32(_mm_set_epi32(3, 2, 1, 0), _mm_set1_epi32(int(fill)));
+        alignas(16) std::uint32_t bits[kBlockEntries];
+        _mm_store_si128(reinterpret_cast<__m128i*>(bits), _mm_or_si128(_mm_castps_si128(d2), _mm_xor_si128(unused, _mm_set1_epi32(-1))));
+        for (std::uint32_t k = 0; k < kBlockEntries; ++k) {
+            const std::uint64_t key = std::uint64_t(bits[k]) << 32 | block.id[k];
+            best = key < best ? key : best;
         }
         if (--blocks == 0) break;  // counted, so the end of the chain costs no memory access
     }
