@@ -100,7 +100,7 @@ const std::uint32_t* NeuralMesh::walk_ring(Vertex v, std::vector<std::uint32_t>&
 // Choice: all neighbours are moved from the positions they had before this step (a Jacobi
 // update), so the result does not depend on the order of the ring.
 void NeuralMesh::smooth_neighbourhood(Vertex w) {
-    using namespace float4;  // F4, load, yzx, cross_zxy, dot, to_vec3
+    using namespace float4;  // F4, load, yzx, cross_zxy, dot2, to_vec3
     const float an = float(params_.alpha_n);
     if (an == 0.0f) return;
     std::uint32_t k = 0;
@@ -153,9 +153,9 @@ void NeuralMesh::smooth_neighbourhood(Vertex w) {
         }
         const F4 normal = yzx(rotated);
         const F4 laplacian = sum * (1.0f / float(m));  // eq. (5)
-        const float nn = dot(normal, normal);
-        const F4 tangential = nn > 0.0f ? laplacian - normal * (dot(laplacian, normal) / nn)  // eq. (4)
-                                        : laplacian;
+        float nn, ln;  // n . n and L . n
+        dot2(normal, laplacian, normal, nn, ln);
+        const F4 tangential = nn > 0.0f ? laplacian - normal * (ln / nn) : laplacian;  // eq. (4)
         updated[i] = to_vec3(p + tangential * an);  // eq. (3)
     }
     for (std::uint32_t i = 0; i < k; ++i) set_position(Vertex(ring[i]), updated[i]);
