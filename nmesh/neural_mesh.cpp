@@ -17,12 +17,6 @@ namespace nmesh {
 namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-// i + 1 and i - 1 around a ring of m entries, without a branch: where a ring wraps depends on
-// the data, so a branch there is mispredicted about once per ring, which costs more than these
-// few instructions (5% of the learning time at 30,000 vertices).
-inline std::uint32_t ring_next(std::uint32_t i, std::uint32_t m) { return (i + 1) & (0u - std::uint32_t(i + 1 != m)); }
-inline std::uint32_t ring_prev(std::uint32_t i, std::uint32_t m) { return i - 1 + (m & (0u - std::uint32_t(i == 0))); }
 }  // namespace
 
 NeuralMesh::NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bounds, const Parameters& params,
@@ -118,39 +112,27 @@ void NeuralMesh::smooth_neighbourhood(Vertex w) {
         prefetch_for_read(&pos[ring[i]]);
         grid_.prefetch_move(ring[i]);
     }
-    const F4 pw = load(pos[w.idx]);
     for (std::uint32_t i = 0; i < k; ++i) {
         const std::uint32_t v = ring[i];
         const F4 p = load(pos[v]);
         // One pass over v's own ring gives both the Laplacian (eq. 5) and the area-weighted normal
-        // (the sum of the cross products of consecutive ring edges). Clockwise from w, v's ring
-        // reads w, x, ..., y, where x and y are w's ring neighbours on either side of v.
+        // (the sum of the cross products of consecutive ring edges, closing the ring). Both sums
+        // go round the ring in the order it is stored, from wherever it starts: the ring includes
+        // w, whose position step 3 has already updated.
         std::uint32_t m = 0;
         const std::uint32_t* r = ring_of(Vertex(v), ring2_, m);
-        std::uint32_t s = 0;
-        if (rings_.count(Vertex(v)) != 0) {  // cached
-            s = rings_.position_of(Vertex(v), w.idx);
-        } else {
-            while (r[s] != w.idx) ++s;
-        }
         // The cross products are summed with their lanes rotated (float4::cross_zxy), and the sum
         // rotated back once: the same bits as summing cross().
-        const F4 a0 = pw - p, r0 = yzx(a0);
-        const std::uint32_t sx = ring_next(s, m);
-        const F4 a1 = load(pos[r[sx]]) - p, r1 = yzx(a1);        // x
-        const F4 ay = load(pos[r[ring_prev(s, m)]]) - p;          // y
-        F4 sum = a0 + a1;
-        F4 rotated = cross_zxy(a0, r0, ay, yzx(ay)) + cross_zxy(a1, r1, a0, r0);  // closes at y
-        F4 prev = a1, rprev = r1;
-        std::uint32_t t = ring_next(sx, m);
-        for (std::uint32_t j = 2; j < m; ++j) {
-            const F4 a = load(pos[r[t]]) - p, ra = yzx(a);
+        const F4 first = load(pos[r[0]]) - p, rfirst = yzx(first);
+        F4 sum = first, rotated = F4{}, prev = first, rprev = rfirst;
+        for (std::uint32_t j = 1; j < m; ++j) {
+            const F4 a = load(pos[r[j]]) - p, ra = yzx(a);
             sum = sum + a;
             rotated = rotated + cross_zxy(a, ra, prev, rprev);
             prev = a;
             rprev = ra;
-            t = ring_next(t, m);
         }
+        rotated = rotated + cross_zxy(first, rfirst, prev, rprev);  // closes the ring
         const F4 normal = yzx(rotated);
         const F4 laplacian = sum * (1.0f / float(m));  // eq. (5)
         float nn, ln;  // n . n and L . n

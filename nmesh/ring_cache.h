@@ -19,7 +19,6 @@
 
 #include "nmesh/mesh.h"
 #include "nmesh/prefetch.h"
-#include "nmesh/simd.h"
 
 namespace nmesh {
 
@@ -47,25 +46,6 @@ public:
     std::uint32_t count(Vertex v) const { return lines_[v.idx].count; }
     // v's neighbours, clockwise; count(v) of them.
     const std::uint32_t* neighbours(Vertex v) const { return lines_[v.idx].ids; }
-    // The position of `id` among v's neighbours(), or count(v) when it is not one of them.
-    // Precondition: count(v) != 0. Branch-free on SSE2: four compares over the whole line.
-    std::uint32_t position_of(Vertex v, std::uint32_t id) const {
-        const Line& line = lines_[v.idx];
-#if NMESH_SSE2
-        const __m128i* words = reinterpret_cast<const __m128i*>(&line);
-        const __m128i key = _mm_set1_epi32(int(id));
-        unsigned bits = 0;
-        for (int i = 0; i < 4; ++i)
-            bits |= unsigned(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(_mm_load_si128(words + i), key))))
-                    << (4 * i);
-        bits = (bits >> 1) & ((1u << line.count) - 1u);  // word 0 is the count; ids past it are stale
-        return bits != 0 ? std::uint32_t(__builtin_ctz(bits)) : line.count;
-#else
-        std::uint32_t s = 0;
-        while (s < line.count && line.ids[s] != id) ++s;
-        return s;
-#endif
-    }
     // Starts loading v's line into the cache (a hint; no effect on any result).
     void prefetch(Vertex v) const { prefetch_for_read(&lines_[v.idx]); }
 
