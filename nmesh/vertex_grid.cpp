@@ -375,6 +375,31 @@ void VertexGrid::visit_near(Query& query) const {
         g2[a][1] = 0.0;
         g2[a][2] = hi * hi * kBoundShrink;
     }
+    // Usually only the side of each axis whose face is nearer to q can hold a closer vertex: the
+    // candidates are then the 7 cells on those sides, tested nearest first (faces, edges, corner).
+    double near2[3], far2[3];
+    std::uint64_t step[3];  // to the neighbour on the near side (no carry: the cell is not at an edge)
+    for (int a = 0; a < 3; ++a) {
+        const std::uint64_t unit = std::uint64_t(1) << (kIndexBits * (2 - a));
+        const bool lower = g2[a][0] <= g2[a][2];
+        near2[a] = std::min(g2[a][0], g2[a][2]);
+        far2[a] = std::max(g2[a][0], g2[a][2]);
+        step[a] = lower ? 0 - unit : unit;
+    }
+    if (far2[0] > limit && far2[1] > limit && far2[2] > limit) {
+        const std::uint64_t key = x << (2 * kIndexBits) | y << kIndexBits | z;
+        const auto try_cell = [&](double gap2, std::uint64_t k) {
+            if (gap2 <= limit && visit_cell(k, query)) limit = double(query.best_d2());
+        };
+        try_cell(near2[0], key + step[0]);
+        try_cell(near2[1], key + step[1]);
+        try_cell(near2[2], key + step[2]);
+        try_cell(near2[0] + near2[1], key + step[0] + step[1]);
+        try_cell(near2[0] + near2[2], key + step[0] + step[2]);
+        try_cell(near2[1] + near2[2], key + step[1] + step[2]);
+        try_cell(near2[0] + near2[1] + near2[2], key + step[0] + step[1] + step[2]);
+        return;
+    }
     for (int dx = -1; dx <= 1; ++dx) {
         const double gx = g2[0][dx + 1];
         if (gx > limit) continue;
