@@ -111,18 +111,19 @@ PointGrid::PointGrid(const std::vector<Vec3>& points, const PointTransform& tran
     }
 
     // Occupancy bits of the grid and of the pyramid's first level, then the running count of
-    // occupied cells per word.
-    std::vector<std::uint64_t> cell_of(n);
-    occupancy_.assign(std::size_t(std::uint64_t(bricks_[0]) * bricks_[1] * bricks_[2]), OccupancyWord{});
-    for (std::size_t i = 0; i < n; ++i) {
-        const Vec3 p = transform(points[i]);
-        std::uint32_t c3[3];
+    // occupied cells per word. The points' cells are recomputed in the next pass rather than kept:
+    // reading the points again costs less than writing and reading 8 bytes per point.
+    const auto cell_of = [&](const Vec3& p, std::uint32_t (&c3)[3]) {
         for (int a = 0; a < 3; ++a) {
             const double u = (double(p[a]) - origin_[a]) * inv_cell_size_;
             c3[a] = std::min(std::uint32_t(u), dims_[a] - 1);  // u >= 0: truncation is floor
         }
-        const std::uint64_t c = cell_id(c3[0], c3[1], c3[2]);
-        cell_of[i] = c;
+        return cell_id(c3[0], c3[1], c3[2]);
+    };
+    occupancy_.assign(std::size_t(std::uint64_t(bricks_[0]) * bricks_[1] * bricks_[2]), OccupancyWord{});
+    for (std::size_t i = 0; i < n; ++i) {
+        std::uint32_t c3[3];
+        const std::uint64_t c = cell_of(transform(points[i]), c3);
         occupancy_[std::size_t(c >> 6)].bits |= std::uint64_t(1) << (c & 63);
         if (!pyramid_.empty()) set_bit(1, c3[0] / 2, c3[1] / 2, c3[2] / 2);
     }
@@ -133,14 +134,21 @@ PointGrid::PointGrid(const std::vector<Vec3>& points, const PointTransform& tran
     }
 
     // Counting sort of the points into their cells (stable, so each cell lists its points by
-    // increasing index).
+    // increasing index). Each point's slot (its cell's rank among the occupied cells) is kept
+    // between the two passes: 4 bytes per point of temporary memory.
+    std::vector<std::uint32_t> slot_of_point(n);
     cell_start_.assign(std::size_t(occupied) + 1, 0);
-    for (std::size_t i = 0; i < n; ++i) ++cell_start_[std::size_t(slot_of(cell_of[i])) + 1];
+    for (std::size_t i = 0; i < n; ++i) {
+        std::uint32_t c3[3];
+        const std::uint32_t slot = std::uint32_t(slot_of(cell_of(transform(points[i]), c3)));
+        slot_of_point[i] = slot;
+        ++cell_start_[std::size_t(slot) + 1];
+    }
     for (std::size_t s = 0; s < occupied; ++s) cell_start_[s + 1] += cell_start_[s];
     std::vector<std::uint32_t> cursor(cell_start_.begin(), cell_start_.end() - 1);
     entries_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-        const std::uint32_t pos = cursor[std::size_t(slot_of(cell_of[i]))]++;
+        const std::uint32_t pos = cursor[slot_of_point[i]]++;
         entries_[pos] = {transform(points[i]), std::uint32_t(i)};
     }
 

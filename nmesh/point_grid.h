@@ -35,7 +35,7 @@ struct NearestPoint {
 
 class PointGrid {
 public:
-    // Builds the index over `points` (copied). O(n) time; 8 bytes per point of temporary memory.
+    // Builds the index over `points` (copied). O(n) time; 4 bytes per point of temporary memory.
     //
     // Cell size: sized for surface-like data, about kPointsPerCell points per occupied cell when
     // the points sample a surface whose area is near half the bounding box's surface area (for a
