@@ -1,4 +1,3 @@
-
 // The Neural Meshes learning loop, step by step as section 3 of the Neural Meshes ES paper lists
 // it, plus the edge swap of section 4. Where the papers leave a choice open, the choice is named
 // "Choice:" here and listed in README.md.
