@@ -3,6 +3,8 @@
 // "Choice:" here and listed in README.md.
 #include "nmesh/neural_mesh.h"
 
+#include <cstring>
+
 #include <algorithm>
 #include <cassert>
 #include <chrono>
@@ -87,12 +89,24 @@ const std::uint32_t* NeuralMesh::walk_ring(Vertex v, std::vector<std::uint32_t>&
     return scratch.data();
 }
 
+// Starts loading what the smoothing of a vertex with these k neighbours reads first: their ring
+// lines, positions and grid slots, all at once, so that the cache misses of a large mesh overlap
+// instead of following one another.
+void NeuralMesh::prefetch_neighbourhood(const std::uint32_t* ring, std::uint32_t k) const {
+    const Vec3* pos = mesh_.positions().data();
+    for (std::uint32_t i = 0; i < k; ++i) {
+        rings_.prefetch(Vertex(ring[i]));
+        prefetch_for_read(&pos[ring[i]]);
+        grid_.prefetch_move(ring[i]);
+    }
+}
+
 // Step 4, eq. (3)-(5): tangential Laplacian smoothing of the winner's one-ring.
 // v'_n = v_n + alpha_n L_t,  L_t = L - (L . n) n,  L = mean over the ring of (v_k - v_n),
 // with n the vertex's approximated (area-weighted) normal.
 // Choice: all neighbours are moved from the positions they had before this step (a Jacobi
 // update), so the result does not depend on the order of the ring.
-void NeuralMesh::smooth_neighbourhood(Vertex w) {
+void NeuralMesh::smooth_neighbourhood(Vertex w, bool prefetched) {
     using namespace float4;  // F4, load, yzx, cross_zxy, dot2, to_vec3
     const float an = float(params_.alpha_n);
     if (an == 0.0f) return;
@@ -101,16 +115,11 @@ void NeuralMesh::smooth_neighbourhood(Vertex w) {
     if (updated_.size() < k) updated_.resize(k);  // grows to the largest valence seen, then never
     Vec3* updated = updated_.data();
     const Vec3* pos = mesh_.positions().data();  // read only until every new position is known
-    // What this step reads first is known from w's ring: ask for all of it at once, so that the
-    // cache misses of a large mesh overlap instead of following one another: the ring vertices'
-    // lines, positions and grid slots. (Asking for the positions of their own neighbours as well,
-    // once the lines arrive, cost more than it saved: 13% slower at 30,000 vertices, 7-25% at
-    // 100,000, no clear difference at 300,000.)
-    for (std::uint32_t i = 0; i < k; ++i) {
-        rings_.prefetch(Vertex(ring[i]));
-        prefetch_for_read(&pos[ring[i]]);
-        grid_.prefetch_move(ring[i]);
-    }
+    // What this step reads first is known from w's ring: ask for all of it at once, unless the
+    // previous iteration already did, having looked ahead to w (adapt_ahead). (Asking for the
+    // positions of the ring's own neighbours as well, once the lines arrive, cost more than it
+    // saved: 13% slower at 30,000 vertices, 7-25% at 100,000, no clear difference at 300,000.)
+    if (!prefetched) prefetch_neighbourhood(ring, k);
     for (std::uint32_t i = 0; i < k; ++i) {
         const std::uint32_t v = ring[i];
         const F4 p = load(pos[v]);
@@ -144,10 +153,67 @@ void NeuralMesh::smooth_neighbourhood(Vertex w) {
 
 void NeuralMesh::adapt() {
     if (profiling_) return adapt_profiled();
+    if (mesh_.n_vertices() >= lookahead_from_) return adapt_ahead(next_sample());
     adapt_to(next_sample());  // step 1
 }
 
+// The nearest vertex to x, the sample the previous iteration looked ahead to: its early answer
+// still holds for every vertex that iteration did not move (their distances are unchanged and
+// were not smaller), so only the moved ones need comparing; if the early answer itself moved
+// away from x, anything could now be nearer, and the grid is asked again.
+std::uint32_t NeuralMesh::early_winner(const Vec3& x) const {
+    const Vec3* pos = mesh_.positions().data();
+    const auto key = [&](std::uint32_t v) {
+        const float d2 = squared_distance(x, pos[v]);
+        std::uint32_t bits;
+        std::memcpy(&bits, &d2, sizeof bits);
+        return std::uint64_t(bits) << 32 | v;
+    };
+    std::uint64_t best = key(early_);
+    bool early_moved = false;
+    for (std::uint32_t i = 0; i < n_moved_; ++i) {
+        early_moved |= moved_[i] == early_;
+        const std::uint64_t k = key(moved_[i]);
+        best = k < best ? k : best;
+    }
+    if (early_moved && squared_distance(x, pos[early_]) > early_d2_) return grid_.nearest(x);
+    return std::uint32_t(best);
+}
+
+// adapt() for a large mesh: the same steps, with the next sample's winner found before this
+// iteration's smoothing, so that its neighbourhood is fetched while this iteration runs instead
+// of at the start of the next. The answers are the same as adapt_to()'s (early_winner() checks
+// them); only the time of the memory accesses changes.
+void NeuralMesh::adapt_ahead(const Vec3& x) {
+    const bool was_early = early_valid_;
+    const Vertex w(was_early ? early_winner(x) : grid_.nearest(x));  // step 2, eq. (1)
+    const bool prefetched = was_early && w.idx == early_;
+    // The next sample's winner, on the vertices as they are before this iteration moves them.
+    early_ = grid_.nearest(ahead_[0]);
+    early_d2_ = squared_distance(ahead_[0], mesh_.position(Vertex(early_)));
+    rings_.prefetch(Vertex(early_));
+    activity_.prefetch(w.idx);
+    move_winner(w, x);                    // step 3
+    smooth_neighbourhood(w, prefetched);  // step 4
+    std::uint32_t k = 0;
+    const std::uint32_t* ring = ring_of(w, ring_, k);
+    early_valid_ = k <= RingCache::kCapacity;
+    if (early_valid_) {
+        moved_[0] = w.idx;
+        for (std::uint32_t i = 0; i < k; ++i) moved_[i + 1] = ring[i];
+        n_moved_ = k + 1;
+    }
+    // The next winner's neighbourhood, while this iteration's counters are updated (an
+    // uncached ring, count 0, is not fetched: the smoothing will walk it).
+    prefetch_neighbourhood(rings_.neighbours(Vertex(early_)), rings_.count(Vertex(early_)));
+    activity_.signal(w.idx);  // step 5
+    activity_.decay();        // step 6
+    ++iteration_;
+    ++stats_.iterations;
+}
+
 void NeuralMesh::adapt_to(const Vec3& x) {
+    early_valid_ = false;
     const Vertex w(grid_.nearest(x));  // step 2, eq. (1)
     activity_.prefetch(w.idx);         // needed at step 5: let it load during steps 3-4
     move_winner(w, x);                 // step 3
@@ -160,6 +226,7 @@ void NeuralMesh::adapt_to(const Vec3& x) {
 
 // The same as adapt(), timing the winner search (steps 1-2) and the updates (steps 3-6).
 void NeuralMesh::adapt_profiled() {
+    early_valid_ = false;
     const auto t0 = Clock::now();
     const Vec3 x = next_sample();
     const Vertex w(grid_.nearest(x));
@@ -202,6 +269,7 @@ void NeuralMesh::iterate() {
 // sits at the midpoint of that edge, and v's signal counter is shared equally between the two.
 // Halving the ring keeps both valences near the mesh's average (valence k + 1 and n - k + 3).
 void NeuralMesh::split_most_active() {
+    early_valid_ = false;
     const Vertex v(activity_.most_active());
     const Vec3 p = mesh_.position(v);
     Halfedge longest = mesh_.halfedge(v);
@@ -240,6 +308,7 @@ void NeuralMesh::split_most_active() {
 // no edge of v can collapse, v stays (counted in collapses_refused) and is tried again at the
 // next pass.
 void NeuralMesh::remove_inactive() {
+    early_valid_ = false;
     ++stats_.removal_passes;
     inactive_.clear();
     activity_.collect_inactive(period_start_, inactive_);
