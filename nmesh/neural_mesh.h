@@ -100,10 +100,10 @@ private:
     Vec3 ahead_[2];                     // the next two samples, normalised
     std::uint32_t ahead_index_ = 0;     // the index of the one after them, drawn in advance
     std::uint64_t ahead_cell_ = 0;      // ahead_[1]'s grid cell (VertexGrid::prefetch_query)
-    // From this many vertices on, adapt() looks one sample ahead (adapt_ahead). Below it the
-    // mesh mostly fits in the cache and the check costs more than the early fetch saves: with the
-    // look-ahead from the start, 3% less learning time at 100,000 vertices and 10% at 300,000,
-    // and about the same at 30,000 (alternating runs; the results are the same bit for bit).
+    // From this many vertices on, adapt() looks one sample ahead (adapt_ahead). With the
+    // look-ahead from the start, learning took 3% less time at 100,000 vertices and 10% less at
+    // 300,000 (alternating runs), but 11% more instructions for no measurable gain at 30,000,
+    // where the mesh mostly fits in the cache. The results are the same bit for bit either way.
     std::uint32_t lookahead_from_ = 65536;
     // The look-ahead winner search of large meshes (adapt_ahead): the next sample's nearest
     // vertex found before this iteration moves anything, its squared distance then, and the
