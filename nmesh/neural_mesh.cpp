@@ -3,12 +3,11 @@
 // "Choice:" here and listed in README.md.
 #include "nmesh/neural_mesh.h"
 
-#include <cstring>
-
 #include <algorithm>
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 #include "nmesh/float4.h"
