@@ -7,7 +7,6 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <sstream>
 
 #include "nmesh/float4.h"
@@ -100,17 +99,16 @@ void NeuralMesh::prefetch_neighbourhood(const std::uint32_t* ring, std::uint32_t
     }
 }
 
-// Step 4, eq. (3)-(5): tangential Laplacian smoothing of the winner's one-ring.
+// Step 4, eq. (3)-(5): tangential Laplacian smoothing of the winner's one-ring, its k neighbours in
+// `ring`.
 // v'_n = v_n + alpha_n L_t,  L_t = L - (L . n) n,  L = mean over the ring of (v_k - v_n),
 // with n the vertex's approximated (area-weighted) normal.
 // Choice: all neighbours are moved from the positions they had before this step (a Jacobi
 // update), so the result does not depend on the order of the ring.
-void NeuralMesh::smooth_neighbourhood(Vertex w, bool prefetched) {
+void NeuralMesh::smooth_neighbourhood(const std::uint32_t* ring, std::uint32_t k, bool prefetched) {
     using namespace float4;  // F4, load, yzx, cross_zxy, dot2, to_vec3
     const float an = float(params_.alpha_n);
     if (an == 0.0f) return;
-    std::uint32_t k = 0;
-    const std::uint32_t* ring = ring_of(w, ring_, k);
     if (updated_.size() < k) updated_.resize(k);  // grows to the largest valence seen, then never
     Vec3* updated = updated_.data();
     const Vec3* pos = mesh_.positions().data();  // read only until every new position is known
@@ -150,6 +148,17 @@ void NeuralMesh::smooth_neighbourhood(Vertex w, bool prefetched) {
     for (std::uint32_t i = 0; i < k; ++i) set_position(Vertex(ring[i]), updated[i]);
 }
 
+// Steps 3-6 for the winner w of sample x. `ring` holds w's k neighbours (ring_of), whose
+// neighbourhood is already being fetched when `prefetched`.
+void NeuralMesh::update(Vertex w, const Vec3& x, const std::uint32_t* ring, std::uint32_t k, bool prefetched) {
+    move_winner(w, x);                         // step 3
+    smooth_neighbourhood(ring, k, prefetched);  // step 4
+    activity_.signal(w.idx);                   // step 5, eq. (6): tau_w += 1
+    activity_.decay();                         // step 6, eq. (7): tau_v *= alpha for all v
+    ++iteration_;
+    ++stats_.iterations;
+}
+
 void NeuralMesh::adapt() {
     if (profiling_) return adapt_profiled();
     if (mesh_.n_vertices() >= lookahead_from_) return adapt_ahead(next_sample());
@@ -162,20 +171,15 @@ void NeuralMesh::adapt() {
 // away from x, anything could now be nearer, and the grid is asked again.
 std::uint32_t NeuralMesh::early_winner(const Vec3& x) const {
     const Vec3* pos = mesh_.positions().data();
-    const auto key = [&](std::uint32_t v) {
-        const float d2 = squared_distance(x, pos[v]);
-        std::uint32_t bits;
-        std::memcpy(&bits, &d2, sizeof bits);
-        return std::uint64_t(bits) << 32 | v;
-    };
-    std::uint64_t best = key(early_);
+    const float early_d2 = squared_distance(x, pos[early_]);
+    std::uint64_t best = VertexGrid::rank(early_d2, early_);
     bool early_moved = false;
     for (std::uint32_t i = 0; i < n_moved_; ++i) {
         early_moved |= moved_[i] == early_;
-        const std::uint64_t k = key(moved_[i]);
-        best = k < best ? k : best;
+        const std::uint64_t r = VertexGrid::rank(squared_distance(x, pos[moved_[i]]), moved_[i]);
+        best = r < best ? r : best;
     }
-    if (early_moved && squared_distance(x, pos[early_]) > early_d2_) return grid_.nearest(x);
+    if (early_moved && early_d2 > early_d2_) return grid_.nearest(x);
     return std::uint32_t(best);
 }
 
@@ -192,35 +196,28 @@ void NeuralMesh::adapt_ahead(const Vec3& x) {
     early_d2_ = squared_distance(ahead_[0], mesh_.position(Vertex(early_)));
     rings_.prefetch(Vertex(early_));
     activity_.prefetch(w.idx);
-    move_winner(w, x);                    // step 3
-    smooth_neighbourhood(w, prefetched);  // step 4
     std::uint32_t k = 0;
     const std::uint32_t* ring = ring_of(w, ring_, k);
+    update(w, x, ring, k, prefetched);
+    // What moved, for the next iteration's check (the winner and its ring).
     early_valid_ = k <= RingCache::kCapacity;
     if (early_valid_) {
         moved_[0] = w.idx;
         for (std::uint32_t i = 0; i < k; ++i) moved_[i + 1] = ring[i];
         n_moved_ = k + 1;
     }
-    // The next winner's neighbourhood, while this iteration's counters are updated (an
-    // uncached ring, count 0, is not fetched: the smoothing will walk it).
+    // The next winner's neighbourhood, while the rest of this iteration runs (an uncached ring,
+    // count 0, is not fetched: the smoothing will walk it).
     prefetch_neighbourhood(rings_.neighbours(Vertex(early_)), rings_.count(Vertex(early_)));
-    activity_.signal(w.idx);  // step 5
-    activity_.decay();        // step 6
-    ++iteration_;
-    ++stats_.iterations;
 }
 
 void NeuralMesh::adapt_to(const Vec3& x) {
     early_valid_ = false;
     const Vertex w(grid_.nearest(x));  // step 2, eq. (1)
     activity_.prefetch(w.idx);         // needed at step 5: let it load during steps 3-4
-    move_winner(w, x);                 // step 3
-    smooth_neighbourhood(w);           // step 4
-    activity_.signal(w.idx);           // step 5, eq. (6): tau_w += 1
-    activity_.decay();                 // step 6, eq. (7): tau_v *= alpha for all v
-    ++iteration_;
-    ++stats_.iterations;
+    std::uint32_t k = 0;
+    const std::uint32_t* ring = ring_of(w, ring_, k);
+    update(w, x, ring, k, false);
 }
 
 // The same as adapt(), timing the winner search (steps 1-2) and the updates (steps 3-6).
@@ -231,14 +228,11 @@ void NeuralMesh::adapt_profiled() {
     const Vertex w(grid_.nearest(x));
     activity_.prefetch(w.idx);
     const auto t1 = Clock::now();
-    move_winner(w, x);
-    smooth_neighbourhood(w);
-    activity_.signal(w.idx);
-    activity_.decay();
+    std::uint32_t k = 0;
+    const std::uint32_t* ring = ring_of(w, ring_, k);
+    update(w, x, ring, k, false);
     stats_.seconds_winner += std::chrono::duration<double>(t1 - t0).count();
     stats_.seconds_update += seconds_since(t1);
-    ++iteration_;
-    ++stats_.iterations;
 }
 
 void NeuralMesh::iterate() {

@@ -78,7 +78,8 @@ private:
     Vec3 next_sample();
     void move_winner(Vertex w, const Vec3& x);
     void prefetch_neighbourhood(const std::uint32_t* ring, std::uint32_t k) const;
-    void smooth_neighbourhood(Vertex w, bool prefetched = false);
+    void smooth_neighbourhood(const std::uint32_t* ring, std::uint32_t k, bool prefetched);
+    void update(Vertex w, const Vec3& x, const std::uint32_t* ring, std::uint32_t k, bool prefetched);
     const std::uint32_t* ring_of(Vertex v, std::vector<std::uint32_t>& scratch, std::uint32_t& count);
     const std::uint32_t* walk_ring(Vertex v, std::vector<std::uint32_t>& scratch, std::uint32_t& count);
     float face_deviation(Face f) const;

@@ -334,10 +334,7 @@ void VertexGrid::scan_cell(const Cell& cell, Query& query) const {
 #else
     for (std::uint32_t b = cell.head;; b = block_next_[b], fill = kBlockEntries) {
         for (std::uint32_t k = 0; k < fill; ++k) {
-            const float d2 = squared_distance(query.q, entry_position(b * kBlockEntries + k));
-            std::uint32_t bits;
-            std::memcpy(&bits, &d2, sizeof bits);
-            const std::uint64_t key = std::uint64_t(bits) << 32 | blocks_[b].id[k];
+            const std::uint64_t key = rank(squared_distance(query.q, entry_position(b * kBlockEntries + k)), blocks_[b].id[k]);
             best = key < best ? key : best;
         }
         if (--blocks == 0) break;

@@ -29,6 +29,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -108,6 +109,15 @@ public:
         if (s != kNone) prefetch_for_read(&blocks_[table_[s].head]);
     }
     void prefetch_move(std::uint32_t id) const { prefetch_for_read(&slots_[id]); }
+
+    // The order nearest() ranks vertices in: the float bits of the squared distance, then the id
+    // (for non-negative floats the bits order like the values), so the smallest rank is the
+    // answer. For callers that narrow an earlier answer down to a few candidates themselves.
+    static std::uint64_t rank(float squared_distance, std::uint32_t id) {
+        std::uint32_t bits;
+        std::memcpy(&bits, &squared_distance, sizeof bits);
+        return std::uint64_t(bits) << 32 | id;
+    }
 
     std::size_t size() const { return size_; }
     bool contains(std::uint32_t id) const { return id < slots_.size() && slots_[id].entry != kNone; }
