@@ -24,7 +24,7 @@
 // topology operation is taken only when the mesh allows it (Mesh::can_flip, can_collapse), so the
 // result is a closed genus-0 2-manifold with exactly the vertices asked for.
 // Each pass is O(n) for a mesh of n vertices and a cloud of comparable size (the repair is local
-// to the defects): about 0.2 s for the 30,000-vertex bunny, against 2.4 s of learning.
+// to the defects): about 0.33 s for the 30,000-vertex bunny, against 1.3 s of learning.
 #pragma once
 
 #include <cstddef>
@@ -39,8 +39,14 @@
 namespace nmesh {
 
 struct FinishOptions {
-    // Regularisation rounds (flips, then relaxation). 0 skips step 1.
-    int rounds = 3;
+    // Regularisation rounds (flips, then relaxation). 0 skips step 1. Choice: 10. Each round
+    // makes the triangles more regular and moves the vertices further off the scan points the
+    // learning left them on (each vertex is the average of the few points it won), so the
+    // triangles' centroids fall less often between scan points. Measured on the 30,000-vertex
+    // bunny: DM(X,T) 0.000464 after 3 rounds, 0.000447 after 10, 0.000439 after 20, 0.000423
+    // after 100, at about 17 ms a round; the Hausdorff distance, the point-to-surface distance
+    // and the angles are as good or better.
+    int rounds = 10;
     // Flips only between triangles whose normals differ by less than this, before and after.
     float flip_max_dihedral_deg = 20.0f;
     // Pull the relaxed vertices towards the cloud (otherwise the relaxation is purely tangential,
