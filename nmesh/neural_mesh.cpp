@@ -32,7 +32,7 @@ NeuralMesh::NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bound
         grid_.insert(v, mesh_.position(Vertex(v)));
         activity_.add(v, 0.0);
     }
-    if (params_.edge_swap) cloud_index_ = std::make_unique<PointGrid>(points_, transform_);
+    if (params_.edge_swap) cloud_index_ = std::make_unique<PointGrid>(points_, transform_, bounds);
     next_removal_ = std::uint64_t(params_.cec) * mesh_.n_vertices();
     for (Vec3& a : ahead_) a = transform_(points_[rng_.below(std::uint32_t(points_.size()))]);
     ahead_index_ = rng_.below(std::uint32_t(points_.size()));

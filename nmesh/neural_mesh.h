@@ -27,7 +27,8 @@ class NeuralMesh {
 public:
     // The engine learns `transform(p)` for the points p of `points`, which must outlive it.
     // The transformed points should be normalised (reconstruct() centres them and scales them
-    // into a box of diagonal at most 1); `bounds` is their bounding box. `params` must be valid.
+    // into a box of diagonal at most 1), finite, and `bounds` is their exact bounding box (the
+    // nearest-point index is laid out on it). `params` must be valid.
     NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bounds, const Parameters& params,
                const PointTransform& transform = {});
 

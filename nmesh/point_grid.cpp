@@ -87,7 +87,19 @@ PointGrid::PointGrid(const std::vector<Vec3>& points, const PointTransform& tran
                              " has a NaN or infinite coordinate");
         box.extend(p);
     }
+    build(points, transform, box);
+}
 
+PointGrid::PointGrid(const std::vector<Vec3>& points, const PointTransform& transform, const BoundingBox& bounds) {
+    const std::size_t n = points.size();
+    if (n == 0) throw InputError("PointGrid: the point cloud is empty");
+    if (n > std::numeric_limits<std::uint32_t>::max())
+        throw InputError("PointGrid: more than 2^32 - 1 points (" + std::to_string(n) + ")");
+    build(points, transform, bounds);
+}
+
+void PointGrid::build(const std::vector<Vec3>& points, const PointTransform& transform, const BoundingBox& box) {
+    const std::size_t n = points.size();
     // Grid geometry.
     double extent[3];
     for (int a = 0; a < 3; ++a) {
@@ -136,7 +148,7 @@ PointGrid::PointGrid(const std::vector<Vec3>& points, const PointTransform& tran
     // Counting sort of the points into their cells (stable, so each cell lists its points by
     // increasing index). Each point's slot (its cell's rank among the occupied cells) is kept
     // between the two passes: 4 bytes per point of temporary memory.
-    std::vector<std::uint32_t> slot_of_point(n);
+    Array<std::uint32_t> slot_of_point(n);
     cell_start_.assign(std::size_t(occupied) + 1, 0);
     for (std::size_t i = 0; i < n; ++i) {
         std::uint32_t c3[3];

@@ -21,6 +21,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "nmesh/bounding_box.h"
+#include "nmesh/huge_page_allocator.h"
 #include "nmesh/point_transform.h"
 #include "nmesh/vec3.h"
 
@@ -55,6 +57,10 @@ public:
     // `transform`: the index is built over transform(p) for the points p (no copy of the
     // transformed cloud is made besides the index's own); identity by default.
     explicit PointGrid(const std::vector<Vec3>& points, const PointTransform& transform = {});
+    // The same index when the caller already knows `bounds`, the bounding box of the transformed
+    // points (all of them finite, as the caller has checked): the pass over the points that
+    // finds the box and checks every coordinate is skipped (0.3 s for 36 million points).
+    PointGrid(const std::vector<Vec3>& points, const PointTransform& transform, const BoundingBox& bounds);
 
     // The nearest point to q, with ties going to the smaller index.
     // Precondition: q is finite, and squared distances from q to the points fit in a float
@@ -89,6 +95,9 @@ public:
     static constexpr double kMaxCellsPerPoint = 8.0;
 
 private:
+    // The construction once the box of the transformed points is known.
+    void build(const std::vector<Vec3>& points, const PointTransform& transform, const BoundingBox& box);
+
     // Occupancy of the 64 cells of a brick, and the number of occupied cells before the brick.
     struct OccupancyWord {
         std::uint64_t bits = 0;
@@ -123,9 +132,13 @@ private:
         Vec3 point;
         std::uint32_t index;
     };
-    std::vector<Entry> entries_;                 // grouped by cell
-    std::vector<OccupancyWord> occupancy_;       // one word per brick of 4x4x4 cells
-    std::vector<std::uint32_t> cell_start_;      // per occupied cell, then the total count
+    // The large arrays (hundreds of megabytes for tens of millions of points) on huge pages:
+    // fewer page faults while they are filled, fewer TLB misses in the queries.
+    template <class T>
+    using Array = std::vector<T, HugePageAllocator<T>>;
+    Array<Entry> entries_;                       // grouped by cell
+    Array<OccupancyWord> occupancy_;             // one word per brick of 4x4x4 cells
+    Array<std::uint32_t> cell_start_;            // per occupied cell, then the total count
     // pyramid_[l - 1] holds the occupancy bits of level l >= 1, whose cells are 2^l grid cells wide.
     std::vector<std::vector<std::uint64_t>> pyramid_;
     std::vector<std::array<std::uint32_t, 3>> level_dims_;  // cells per axis, level 0 first

@@ -40,7 +40,12 @@ struct Normalization {
         transform.center = box.center();
         const double diag = box.diagonal();
         transform.scale = diag > 0.0 ? float(std::ldexp(1.0, -std::ilogb(diag) - 1)) : 1.0f;
-        for (const Vec3& p : cloud.points) bounds.extend(transform(p));
+        // The box of the normalised points, without another pass over them: each coordinate of
+        // transform(p) = (p - center) * scale is a non-decreasing function of the same coordinate
+        // of p (float subtraction and multiplication by a positive number round monotonically),
+        // so the smallest and largest are the transforms of the input box's corners.
+        bounds.extend(transform(box.min));
+        bounds.extend(transform(box.max));
     }
     std::vector<Vec3> normalised(const PointCloud& cloud) const {
         std::vector<Vec3> points(cloud.size());

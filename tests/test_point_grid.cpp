@@ -292,6 +292,46 @@ TEST_CASE("PointGrid over transformed points answers as over a transformed copy"
     CHECK_THROWS_AS(PointGrid(points, huge), nmesh::InputError);
 }
 
+TEST_CASE("PointGrid with the transformed points' box given is the same index") {
+    // reconstruct() hands the engine the normalised box as the transforms of the input box's
+    // corners, not from a pass over the normalised points: each coordinate of (p - c) * s
+    // is non-decreasing in p for s > 0, so both boxes are the same bits. Checked here on clouds
+    // far from the origin, with scales that are and are not powers of two.
+    std::mt19937 rng(12);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (int trial = 0; trial < 20; ++trial) {
+        const Vec3 offset{u(rng) * 1e4f, u(rng) * 10.0f, u(rng) * 1e-3f};
+        const float spread = std::ldexp(1.0f, trial % 7 - 3);
+        std::vector<Vec3> points;
+        for (int i = 0; i < 2000; ++i) points.push_back(offset + Vec3{u(rng), u(rng), u(rng)} * spread);
+        const BoundingBox box = nmesh::bounding_box(points);
+        PointTransform t;
+        t.center = box.center();
+        t.scale = trial % 2 == 0 ? std::ldexp(1.0f, -(trial % 5)) : 0.3f + 0.1f * float(trial);
+        BoundingBox from_corners;
+        from_corners.extend(t(box.min));
+        from_corners.extend(t(box.max));
+        BoundingBox from_points;
+        for (const Vec3& p : points) from_points.extend(t(p));
+        REQUIRE(from_corners.min == from_points.min);
+        REQUIRE(from_corners.max == from_points.max);
+
+        const PointGrid found(points, t), given(points, t, from_corners);
+        CHECK(found.cell_size() == given.cell_size());
+        CHECK(found.dimensions() == given.dimensions());
+        CHECK(found.memory_bytes() == given.memory_bytes());
+        std::vector<Vec3> copy;
+        for (const Vec3& p : points) copy.push_back(t(p));
+        const std::vector<Vec3> queries = mixed_queries(copy, rng, 100);
+        CHECK(count_mismatches(given, copy, queries) == 0);
+        for (const Vec3& q : queries) {
+            const NearestPoint a = found.find_nearest(q), b = given.find_nearest(q);
+            REQUIRE(a.index == b.index);
+            REQUIRE(a.squared_distance == b.squared_distance);
+        }
+    }
+}
+
 TEST_CASE("PointGrid rejects clouds it cannot index") {
     CHECK_THROWS_AS(PointGrid(std::vector<Vec3>{}), nmesh::InputError);
     const float nan = std::numeric_limits<float>::quiet_NaN();
