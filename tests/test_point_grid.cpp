@@ -99,6 +99,14 @@ std::vector<Vec3> mixed_queries(const std::vector<Vec3>& points, std::mt19937& r
     return q;
 }
 
+// Whether two indexes give the same answers, bit for bit, to every query.
+bool same_answers(const PointGrid& a, const PointGrid& b, const std::vector<Vec3>& queries) {
+    for (const Vec3& q : queries) {
+        const NearestPoint x = a.find_nearest(q), y = b.find_nearest(q);
+        if (x.index != y.index || x.squared_distance != y.squared_distance) return false;
+    }
+    return true;
+}
 
 }  // namespace
 
@@ -281,11 +289,7 @@ TEST_CASE("PointGrid over transformed points answers as over a transformed copy"
     CHECK(on_the_fly.memory_bytes() == from_copy.memory_bytes());
     const std::vector<Vec3> queries = mixed_queries(copy, rng, 800);
     CHECK(count_mismatches(on_the_fly, copy, queries) == 0);
-    for (const Vec3& q : queries) {
-        const NearestPoint a = on_the_fly.find_nearest(q), b = from_copy.find_nearest(q);
-        REQUIRE(a.index == b.index);
-        REQUIRE(a.squared_distance == b.squared_distance);
-    }
+    CHECK(same_answers(on_the_fly, from_copy, queries));
     // A transform that overflows a coordinate is refused like a non-finite point.
     PointTransform huge;
     huge.scale = 1e38f;
@@ -324,11 +328,7 @@ TEST_CASE("PointGrid with the transformed points' box given is the same index") 
         for (const Vec3& p : points) copy.push_back(t(p));
         const std::vector<Vec3> queries = mixed_queries(copy, rng, 100);
         CHECK(count_mismatches(given, copy, queries) == 0);
-        for (const Vec3& q : queries) {
-            const NearestPoint a = found.find_nearest(q), b = given.find_nearest(q);
-            REQUIRE(a.index == b.index);
-            REQUIRE(a.squared_distance == b.squared_distance);
-        }
+        CHECK(same_answers(found, given, queries));
     }
 }
 
