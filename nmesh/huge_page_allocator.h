@@ -2,17 +2,19 @@
 //
 // A fresh array of hundreds of megabytes (the nearest-point index of a 36-million-point cloud
 // holds 576 MB) costs a page fault per 4 KiB page when it is first written, and its random reads
-// miss the TLB. Transparent huge pages cut both by 512, but where the kernel gives them only on
-// request (/sys/kernel/mm/transparent_hugepage/enabled set to "madvise", a common default), an
-// array has to ask: this allocator aligns blocks of at least kMinBytes to 2 MiB and marks them
-// with madvise(MADV_HUGEPAGE). Smaller blocks, and every block on other systems, come from
-// operator new as with std::allocator. The request is a hint: where huge pages are unavailable
-// the memory behaves as any other.
+// miss the TLB. Transparent huge pages cut both by 512, but where the kernel gives them only on request
+// (/sys/kernel/mm/transparent_hugepage/enabled set to "madvise", a common default), an array has
+// to ask: this allocator aligns blocks of at least kMinBytes to 2 MiB and marks them with
+// madvise(MADV_HUGEPAGE). Smaller blocks, and every block on other systems, come from operator
+// new as with std::allocator (over-aligned types included). The request is a hint: where huge
+// pages are unavailable the memory behaves as any other. A block's last huge page is resident
+// as a whole once touched: up to 2 MiB more per large array than with 4 KiB pages.
 #pragma once
 
 #include <cstddef>
 #include <cstdlib>
 #include <new>
+#include <vector>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -43,7 +45,10 @@ struct HugePageAllocator {
             return static_cast<T*>(p);
         }
 #endif
-        return static_cast<T*>(::operator new(bytes));
+        if constexpr (alignof(T) > __STDCPP_DEFAULT_NEW_ALIGNMENT__)
+            return static_cast<T*>(::operator new(bytes, std::align_val_t(alignof(T))));
+        else
+            return static_cast<T*>(::operator new(bytes));
     }
 
     void deallocate(T* p, std::size_t n) noexcept {
@@ -53,9 +58,16 @@ struct HugePageAllocator {
             return;
         }
 #endif
-        ::operator delete(p);
+        if constexpr (alignof(T) > __STDCPP_DEFAULT_NEW_ALIGNMENT__)
+            ::operator delete(p, std::align_val_t(alignof(T)));
+        else
+            ::operator delete(p);
     }
 };
+
+// A std::vector whose large blocks are on huge pages.
+template <class T>
+using HugePageVector = std::vector<T, HugePageAllocator<T>>;
 
 template <class T, class U>
 bool operator==(const HugePageAllocator<T>&, const HugePageAllocator<U>&) noexcept { return true; }

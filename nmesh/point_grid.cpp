@@ -148,7 +148,7 @@ void PointGrid::build(const std::vector<Vec3>& points, const PointTransform& tra
     // Counting sort of the points into their cells (stable, so each cell lists its points by
     // increasing index). Each point's slot (its cell's rank among the occupied cells) is kept
     // between the two passes: 4 bytes per point of temporary memory.
-    Array<std::uint32_t> slot_of_point(n);
+    HugePageVector<std::uint32_t> slot_of_point(n);
     cell_start_.assign(std::size_t(occupied) + 1, 0);
     for (std::size_t i = 0; i < n; ++i) {
         std::uint32_t c3[3];

@@ -42,6 +42,21 @@ TEST_CASE("HugePageAllocator keeps what is written, small and large, through gro
     }
 }
 
+TEST_CASE("HugePageAllocator aligns over-aligned types, small and large blocks alike") {
+    struct alignas(64) Line {
+        std::uint32_t words[16];
+    };
+    for (const std::size_t n : {std::size_t(1), std::size_t(3), std::size_t(100000)}) {
+        INFO("lines " << n);
+        Array<Line> lines(n);
+        CHECK(reinterpret_cast<std::uintptr_t>(lines.data()) % 64 == 0);
+        for (std::size_t i = 0; i < n; ++i) lines[i].words[15] = pattern(i);
+        bool same = true;
+        for (std::size_t i = 0; i < n; ++i) same = same && lines[i].words[15] == pattern(i);
+        CHECK(same);
+    }
+}
+
 TEST_CASE("HugePageAllocator refuses a size that cannot be held") {
     HugePageAllocator<std::uint64_t> alloc;
     CHECK_THROWS_AS((void)alloc.allocate(std::size_t(-1) / 4), std::bad_array_new_length);
