@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <cstdint>
 #include <fstream>
 #include <limits>
@@ -270,6 +271,40 @@ TEST_CASE("componentwise min and max agree with std::fmin and std::fmax, NaN inc
     box.extend({nan, -1, 5});
     CHECK(box.min == Vec3{1, -1, 3});
     CHECK(box.max == Vec3{1, 2, 5});
+}
+
+TEST_CASE("bounding_box is the box extended point by point, bit for bit") {
+    // bounding_box runs on SSE2's minps and maxps where it can, whose rules for NaN and for
+    // equal values (0 == -0) must match nmesh::min and max: zeros of both signs, NaN and
+    // infinities are mixed in, at every count from 0 to 40 (the last point is read apart).
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    const float specials[] = {0.0f, -0.0f, nan, inf, -inf, 1.0f, -1.0f};
+    std::mt19937 rng(21);
+    std::uniform_int_distribution<int> pick(0, 9);
+    std::uniform_real_distribution<float> u(-2.0f, 2.0f);
+    const auto same_bits = [](float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+    int compared = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+        const std::size_t n = std::size_t(trial % 41);
+        std::vector<Vec3> points(n);
+        for (Vec3& p : points)
+            for (int a = 0; a < 3; ++a) {
+                const int k = pick(rng);
+                // Zero-heavy trials make zero the smallest or largest value on some axes.
+                p[a] = k < 7 && trial % 3 != 0 ? specials[k] : (trial % 3 == 0 ? u(rng) : std::abs(u(rng)));
+            }
+        BoundingBox want;
+        for (const Vec3& p : points) want.extend(p);
+        const BoundingBox got = nmesh::bounding_box(points);
+        for (int a = 0; a < 3; ++a) {
+            INFO("trial " << trial << ", axis " << a);
+            CHECK(same_bits(got.min[a], want.min[a]));
+            CHECK(same_bits(got.max[a], want.max[a]));
+            ++compared;
+        }
+    }
+    CHECK(compared == 1200);
 }
 
 TEST_CASE("PointGrid over transformed points answers as over a transformed copy") {
