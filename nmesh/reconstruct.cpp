@@ -23,6 +23,7 @@ void Parameters::validate() const {
     if (cvs < 1) bad("cvs", "must be at least 1");
     if (cec < 1) bad("cec", "must be at least 1");
     if (!(settle >= 0.0 && settle <= 1e6)) bad("settle", "must be in [0, 1e6], got " + std::to_string(settle));
+    if (finish_rounds > 1000) bad("finish_rounds", "must be in [0, 1000], got " + std::to_string(finish_rounds));
 }
 
 namespace {
@@ -199,7 +200,9 @@ Result reconstruct(const PointCloud& cloud, const Parameters& params, const Call
     bool finished = false;
     if (finish) {
         Mesh mesh = learnt;
-        finish_mesh(mesh, norm.normalised(cloud), {}, cloud_index.get());
+        FinishOptions options;
+        options.rounds = int(params.finish_rounds);
+        finish_mesh(mesh, norm.normalised(cloud), options, cloud_index.get());
         cloud_index.reset();
         if (mesh.n_vertices() == learnt.n_vertices()) {
             learnt = Mesh();

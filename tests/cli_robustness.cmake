@@ -321,7 +321,8 @@ foreach(bad
     "--settle;-1;invalid parameter settle" "--vertices;-5;--vertices needs a whole number"
     "--vertices;5000000000;--vertices is too large" "--vertices;1e4;--vertices needs a whole number"
     "--seed;x;--seed needs a whole number" "--snapshots;10,,20;--snapshots needs a whole number"
-    "--cvs;99999999999;--cvs is too large")
+    "--cvs;99999999999;--cvs is too large" "--finish-rounds;1001;invalid parameter finish_rounds"
+    "--finish-rounds;-1;--finish-rounds needs a whole number")
   list(GET bad 0 option)
   list(GET bad 1 value)
   list(GET bad 2 regex)

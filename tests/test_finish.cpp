@@ -431,6 +431,38 @@ TEST_CASE("the stage run on the engine's cloud index gives the mesh it gives on 
     require_same_mesh(again.to_indexed(), direct);
 }
 
+TEST_CASE("Parameters::finish_rounds is the stage's number of regularisation rounds") {
+    // reconstruct() with finish_rounds r gives the mesh of the stage run by hand with
+    // FinishOptions::rounds r on the learnt mesh (the cloud is one the normalisation leaves as it
+    // is, as above); different counts give different meshes, all closed with the same size.
+    const PointCloud cloud = cloud_left_as_it_is();
+    Parameters p;
+    p.target_vertices = 300;
+    NeuralMesh engine(cloud.points, cloud.bounds(), p);
+    while (engine.mesh().n_vertices() < p.target_vertices) engine.iterate();
+    const Mesh learnt = engine.take_mesh();  // the stage's order of work follows its numbering
+    std::vector<IndexedMesh> finished;
+    for (const std::uint32_t rounds : {0u, 2u, 10u}) {
+        INFO("rounds " << rounds);
+        p.finish_rounds = rounds;
+        const Result r = reconstruct(cloud, p);
+        REQUIRE(r.stats.finished);
+        Mesh by_hand = learnt;
+        FinishOptions options;
+        options.rounds = int(rounds);
+        finish_mesh(by_hand, cloud.points, options);
+        require_same_mesh(r.mesh, by_hand.to_indexed());
+        CHECK(check_manifold(Mesh::from_indexed(r.mesh)).ok);
+        CHECK(r.mesh.positions.size() == 300);
+        for (const IndexedMesh& other : finished) CHECK_FALSE(other.positions == r.mesh.positions);
+        finished.push_back(r.mesh);
+    }
+    Parameters defaults;  // ten rounds unless told otherwise
+    defaults.target_vertices = p.target_vertices;
+    REQUIRE(defaults.finish_rounds == 10u);
+    CHECK(reconstruct(cloud, defaults).mesh.positions == finished.back().positions);
+}
+
 TEST_CASE("the finished bunny is a closed manifold without self-intersections or many thin triangles") {
     const PointCloud bunny = shared_bunny();
     REQUIRE(bunny.size() == 35947);

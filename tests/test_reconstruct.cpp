@@ -432,6 +432,7 @@ TEST_CASE("invalid parameters are refused, naming the parameter") {
     refuses([](Parameters& p) { p.cvs = 0; }, "cvs");
     refuses([](Parameters& p) { p.cec = 0; }, "cec");
     refuses([](Parameters& p) { p.settle = -1; }, "settle");
+    refuses([](Parameters& p) { p.finish_rounds = 1001; }, "finish_rounds");
 }
 
 TEST_CASE("clouds that cannot be reconstructed are refused with a reason") {

@@ -55,6 +55,7 @@ constexpr const char* kReconstructUsage =
     "  --cec N                inactive vertices removed every N * n iterations (default 20)\n"
     "  --no-edge-swap         basic Neural Meshes (no edge swap after collapses)\n"
     "  --no-finish            no finishing stage: the learnt mesh exactly as the paper's algorithm leaves it\n"
+    "  --finish-rounds N      the finishing stage's regularisation rounds (default 10; 0: repair only)\n"
     "  --settle X             X * n iterations without topology changes at the end (default 0)\n"
     "  --seed S               random seed; the same seed gives the same mesh (default 1)\n"
     "  --snapshots N1,N2,...  also write the mesh when it reaches these sizes (OUTPUT_<N>v.ext)\n"
@@ -162,7 +163,8 @@ void write_stats(const std::string& path, const std::string& input, const Parame
           << "  \"parameters\": {\"target_vertices\": " << p.target_vertices << ", \"alpha_w\": " << p.alpha_w
           << ", \"alpha_n\": " << p.alpha_n << ", \"alpha\": " << p.alpha << ", \"cvs\": " << p.cvs
           << ", \"cec\": " << p.cec << ", \"edge_swap\": " << (p.edge_swap ? "true" : "false")
-          << ", \"settle\": " << p.settle << ", \"finish\": " << (p.finish ? "true" : "false") << "},\n"
+          << ", \"settle\": " << p.settle << ", \"finish\": " << (p.finish ? "true" : "false")
+          << ", \"finish_rounds\": " << p.finish_rounds << "},\n"
           << "  \"vertices\": " << r.mesh.positions.size() << ",\n"
           << "  \"faces\": " << r.mesh.triangles.size() << ",\n"
           << "  \"iterations\": " << s.iterations << ",\n"
@@ -189,7 +191,7 @@ int run_reconstruct(int argc, char** argv) {
     }
     const Arguments args(argc, argv, 2, {"--no-edge-swap", "--no-finish", "--quiet", "--ascii", "--save-on-interrupt"},
                          {"-o", "--output", "--vertices", "--alpha-w", "--alpha-n", "--alpha", "--cvs", "--cec",
-                          "--seed", "--snapshots", "--stats", "--settle"});
+                          "--seed", "--snapshots", "--stats", "--settle", "--finish-rounds"});
     if (args.positional().size() != 1) throw UsageError("reconstruct takes one INPUT file");
     const std::string input = args.positional()[0];
     const std::string output = args.has("-o") ? args.text("-o") : args.text("--output");
@@ -227,6 +229,7 @@ int run_reconstruct(int argc, char** argv) {
     p.seed = args.count("--seed", p.seed);
     p.edge_swap = !args.has("--no-edge-swap");
     p.finish = !args.has("--no-finish");
+    p.finish_rounds = bounded_count("--finish-rounds", p.finish_rounds);
     try {
         p.validate();
     } catch (const ParameterError& e) {
