@@ -69,15 +69,20 @@ double choose_cell_size(const double e[3], double n) {
     return h;
 }
 
+// Throws InputError unless n points can be indexed (at least one, and 32-bit indices).
+void require_indexable(std::size_t n) {
+    if (n == 0) throw InputError("PointGrid: the point cloud is empty");
+    if (n > std::numeric_limits<std::uint32_t>::max())
+        throw InputError("PointGrid: more than 2^32 - 1 points (" + std::to_string(n) + ")");
+}
+
 }  // namespace
 
 // ---- construction -------------------------------------------------------------------------------
 
 PointGrid::PointGrid(const std::vector<Vec3>& points, const PointTransform& transform) {
     const std::size_t n = points.size();
-    if (n == 0) throw InputError("PointGrid: the point cloud is empty");
-    if (n > std::numeric_limits<std::uint32_t>::max())
-        throw InputError("PointGrid: more than 2^32 - 1 points (" + std::to_string(n) + ")");
+    require_indexable(n);
     // One pass: finiteness and the bounding box of the transformed points.
     BoundingBox box;
     for (std::size_t i = 0; i < n; ++i) {
@@ -91,10 +96,7 @@ PointGrid::PointGrid(const std::vector<Vec3>& points, const PointTransform& tran
 }
 
 PointGrid::PointGrid(const std::vector<Vec3>& points, const PointTransform& transform, const BoundingBox& bounds) {
-    const std::size_t n = points.size();
-    if (n == 0) throw InputError("PointGrid: the point cloud is empty");
-    if (n > std::numeric_limits<std::uint32_t>::max())
-        throw InputError("PointGrid: more than 2^32 - 1 points (" + std::to_string(n) + ")");
+    require_indexable(points.size());
     build(points, transform, bounds);
 }
 

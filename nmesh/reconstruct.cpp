@@ -26,6 +26,9 @@ void Parameters::validate() const {
     if (finish_rounds > 1000) bad("finish_rounds", "must be in [0, 1000], got " + std::to_string(finish_rounds));
 }
 
+// One default for the finishing stage's rounds, whether it is run through reconstruct() or alone.
+static_assert(FinishOptions{}.rounds == int(Parameters{}.finish_rounds), "two defaults for the finishing rounds");
+
 namespace {
 
 // The cloud, centred on its bounding box and scaled by a power of two so that its diagonal is
