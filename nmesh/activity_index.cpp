@@ -42,18 +42,8 @@ void ActivityIndex::add(std::uint32_t v, double tau) {
     n.raw = tau * scale_;
     n.epoch = epoch_;
     n.last_signal = now_;
+    n.stamp = ++stamps_;
     link_bucket(v, bucket_key(n));
-    // Newest end of the recency list: just before the head.
-    if (recent_head_ == kNone) {
-        recent_head_ = v;
-        n.recent_prev = n.recent_next = v;
-    } else {
-        const std::uint32_t tail = nodes_[recent_head_].recent_prev;
-        n.recent_prev = tail;
-        n.recent_next = recent_head_;
-        nodes_[tail].recent_next = v;
-        nodes_[recent_head_].recent_prev = v;
-    }
     ++size_;
 }
 
@@ -61,13 +51,6 @@ void ActivityIndex::remove(std::uint32_t v) {
     assert(contains(v));
     Node& n = nodes_[v];
     unlink_bucket(v, bucket_key(n));
-    if (n.recent_next == v) {
-        recent_head_ = kNone;
-    } else {
-        nodes_[n.recent_prev].recent_next = n.recent_next;
-        nodes_[n.recent_next].recent_prev = n.recent_prev;
-        if (recent_head_ == v) recent_head_ = n.recent_next;
-    }
     n = Node{};
     --size_;
 }
@@ -192,13 +175,12 @@ std::uint32_t ActivityIndex::most_active() const {
 }
 
 void ActivityIndex::collect_inactive(std::uint64_t since, std::vector<std::uint32_t>& out) const {
-    if (recent_head_ == kNone) return;
-    std::uint32_t v = recent_head_;
-    do {
-        if (nodes_[v].last_signal >= since) return;
-        out.push_back(v);
-        v = nodes_[v].recent_next;
-    } while (v != recent_head_);
+    const std::size_t first = out.size();
+    for (std::uint32_t v = 0; v < nodes_.size(); ++v)
+        if (contains(v) && nodes_[v].last_signal < since) out.push_back(v);
+    // Stamps grow with time, so their order is the order of (last signal, stamp).
+    std::sort(out.begin() + std::ptrdiff_t(first), out.end(),
+              [&](std::uint32_t a, std::uint32_t b) { return nodes_[a].stamp < nodes_[b].stamp; });
 }
 
 }  // namespace nmesh

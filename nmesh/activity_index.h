@@ -18,8 +18,13 @@
 //     under decay, so a decay moves nothing; a new epoch drops the lowest 2^12 buckets, whose
 //     counters fell below the smallest normal double (2.2e-308): their vertices "retire" from
 //     the buckets, in O(1), until a signal or set_counter brings them back.
-//   - the vertices are also kept in an intrusive list in order of their last signal (or creation),
-//     so the inactive ones are the front of that list.
+//   - each vertex keeps the time of its last signal (or creation) and a stamp that orders the
+//     signals and additions made at one time; the inactive vertices are found by a pass over the
+//     records when step 8 asks for them (once every Cec * n iterations, so O(1) amortised per
+//     iteration). Choice: a list in order of last signal would find them without that pass, but
+//     moving the winner to its end touches the records of its two list neighbours, which are
+//     arbitrary vertices: two cache misses per iteration on a large mesh, for a query made once
+//     every Cec * n iterations.
 //
 // Accuracy: a counter read back after k decays since it was last written carries a relative
 // rounding error of about k * 2^-52 (as does the plain loop `tau *= alpha`); counters below
@@ -76,7 +81,7 @@ public:
         const std::uint64_t new_key = bucket_key(n);
         if (new_key != old_key) move_to_bucket(v, old_key, new_key);
         n.last_signal = now_;
-        touch(v);
+        n.stamp = ++stamps_;
     }
 
     // Step 6: every counter is multiplied by alpha, and now() advances by one. O(1) amortised
@@ -113,7 +118,8 @@ public:
     std::uint32_t most_active() const;
 
     // Appends to `out` every vertex whose last-signal time is < since, oldest first (equal times:
-    // in the order they were signalled or added). O(k) for k vertices appended.
+    // in the order they were signalled or added). O(largest id + k log k) for k vertices
+    // appended.
     void collect_inactive(std::uint64_t since, std::vector<std::uint32_t>& out) const;
 
     std::size_t size() const { return size_; }
@@ -140,9 +146,9 @@ private:
         double raw = 0.0;         // tau * scale, in the units of `epoch`
         std::uint64_t epoch = 0;  // the epoch raw was written in
         std::uint64_t last_signal = 0;
+        std::uint64_t stamp = 0;  // orders the last signals (and additions): larger is later
         std::uint32_t bucket_prev = kNone, bucket_next = kNone;  // circular bucket list; kNone: absent
                                                                  // (stale, never followed, if retired)
-        std::uint32_t recent_prev = kNone, recent_next = kNone;  // circular list by last signal
     };
 
     // raw, rescaled to the current epoch: exact (a power-of-two scaling) unless it underflows.
@@ -162,23 +168,6 @@ private:
         std::memcpy(&bits, &n.raw, sizeof bits);
         return (bits >> kMantissaShift) + n.epoch * kEpochKeys;
     }
-    // Moves v to the end of the recency list (the most recent end).
-    void touch(std::uint32_t v) {
-        Node& n = nodes_[v];
-        if (v == recent_head_) {  // circular list: the oldest becomes the newest by advancing the head
-            recent_head_ = n.recent_next;
-            return;
-        }
-        const std::uint32_t tail = nodes_[recent_head_].recent_prev;
-        if (v == tail) return;
-        nodes_[n.recent_prev].recent_next = n.recent_next;
-        nodes_[n.recent_next].recent_prev = n.recent_prev;
-        n.recent_prev = tail;
-        n.recent_next = recent_head_;
-        nodes_[tail].recent_next = v;
-        nodes_[recent_head_].recent_prev = v;
-    }
-
     void move_to_bucket(std::uint32_t v, std::uint64_t old_key, std::uint64_t new_key);
     void link_bucket(std::uint32_t v, std::uint64_t key);
     void unlink_bucket(std::uint32_t v, std::uint64_t key);
@@ -198,7 +187,7 @@ private:
     // Bit i: the bucket of key epoch_ * kEpochKeys + i is non-empty; summary bit j: word j is not 0.
     std::array<std::uint64_t, kWords> bucket_bits_{};
     std::array<std::uint64_t, kSummaryWords> summary_bits_{};
-    std::uint32_t recent_head_ = kNone;  // the vertex signalled (or added) longest ago
+    std::uint64_t stamps_ = 0;  // the last stamp given
 };
 
 }  // namespace nmesh
