@@ -195,6 +195,8 @@ void NeuralMesh::adapt_ahead(const Vec3& x) {
     early_ = grid_.nearest(ahead_[0]);
     early_d2_ = squared_distance(ahead_[0], mesh_.position(Vertex(early_)));
     rings_.prefetch(Vertex(early_));
+    grid_.prefetch_move(early_);   // its slot, for its move at step 3
+    activity_.prefetch(early_);    // its record, for its signal at step 5
     activity_.prefetch(w.idx);
     std::uint32_t k = 0;
     const std::uint32_t* ring = ring_of(w, ring_, k);
