@@ -1,10 +1,11 @@
 // nmesh/activity_index.h — the signal counters tau of the learning loop (eqs. (6)-(7) of the
-// paper), with every operation O(1) amortised.
+// paper), with the cost per learning iteration O(1) amortised.
 //
 // The loop signals the winner (tau_w += 1, step 5), decays every counter (tau *= alpha, step 6),
 // splits the most active vertex every Cvs iterations (step 7) and collapses the vertices that
 // have not won for a while every Cec * n iterations (step 8). With up to 10^6 vertices none of
-// these may touch all vertices:
+// the first three may touch all vertices, and step 8's query may do so only because it comes once
+// every Cec * n iterations:
 //
 //   - decay is lazy: counters are stored multiplied by a global scale S = alpha^-(decays), so a
 //     decay only multiplies S by 1/alpha and a signal adds S to one stored value. When S reaches
