@@ -157,18 +157,31 @@ float distance_to_ring(const Mesh& mesh, Vertex v, const Vec3& x) {
 // above the true largest distance to the cloud). Taken once over a whole mesh, then, after the
 // mesh has changed, only where it changed: elsewhere every term is what it was, so the larger of
 // the new terms and the old estimate is the new estimate. O(n) for the whole mesh.
+// Choice: for a cloud of more than kPointsPerVertex points per mesh vertex, the cloud's side
+// measures every stride-th point only, the stride being the smallest that leaves at most
+// kPointsPerVertex per vertex. The estimate guards the repair against moving the surface half an
+// edge away from the cloud, which 16 points per vertex (about 8 per triangle) all around a change
+// still see; the repair's cost then follows the mesh, not the cloud (36 million points would
+// otherwise mean two passes of 36 million nearest-vertex queries). Up to that density every point
+// is measured.
 class HausdorffEstimate {
 public:
+    static constexpr std::size_t kPointsPerVertex = 16;
+
     HausdorffEstimate(const Mesh& mesh, const CloudSurface& cloud) : cloud_(cloud) {
         const std::vector<Vertex> verts = alive_vertices(mesh);
         std::vector<Vec3> pos(verts.size());
         for (std::size_t i = 0; i < verts.size(); ++i) pos[i] = mesh.position(verts[i]);
         const PointGrid index(pos);
-        nearest_.reserve(cloud.points().size());
-        for (const Vec3& x : cloud.points()) {
-            const Vertex v = verts[index.nearest(x)];
+        const std::vector<Vec3>& points = cloud.points();
+        const std::size_t most = kPointsPerVertex * std::max<std::size_t>(verts.size(), 1);
+        stride_ = (points.size() + most - 1) / most;
+        stride_ = std::max<std::size_t>(stride_, 1);
+        nearest_.reserve(points.size() / stride_ + 1);
+        for (std::size_t i = 0; i < points.size(); i += stride_) {
+            const Vertex v = verts[index.nearest(points[i])];
             nearest_.push_back(v.idx);
-            value_ = std::max(value_, distance_to_ring(mesh, v, x));
+            value_ = std::max(value_, distance_to_ring(mesh, v, points[i]));
         }
         for (std::uint32_t v = 0; v < mesh.vertex_capacity(); ++v)
             if (!mesh.is_removed(Vertex(v))) value_ = std::max(value_, to_cloud(mesh.position(Vertex(v))));
@@ -201,10 +214,10 @@ public:
         for (std::size_t i = 0; i < verts.size(); ++i) pos[i] = mesh.position(verts[i]);
         const PointGrid index(pos);
         const std::vector<Vec3>& points = cloud_.points();
-        for (std::size_t i = 0; i < points.size(); ++i) {
+        for (std::size_t i = 0, k = 0; i < points.size(); i += stride_, ++k) {
             const Vertex v = verts[index.nearest(points[i])];
             // Unchanged: the same nearest vertex, with the same triangles around it.
-            if (v.idx == nearest_[i] && !affected[v.idx]) continue;
+            if (v.idx == nearest_[k] && !affected[v.idx]) continue;
             value = std::max(value, distance_to_ring(mesh, v, points[i]));
         }
         return value;
@@ -217,7 +230,8 @@ private:
     float to_cloud(const Vec3& p) const { return std::sqrt(cloud_.index().nearest_squared_distance(p)); }
 
     const CloudSurface& cloud_;
-    std::vector<std::uint32_t> nearest_;  // per cloud point, its nearest vertex
+    std::size_t stride_ = 1;
+    std::vector<std::uint32_t> nearest_;  // per measured cloud point, its nearest vertex
     float value_ = 0.0f;
 };
 
@@ -611,10 +625,16 @@ CloudSurface::CloudSurface(const std::vector<Vec3>& points, const Mesh& mesh, co
       index_(index ? index : own_index_.get()) {
     const std::vector<Vertex> verts = alive_vertices(mesh);
     std::vector<Vec3> pos(verts.size());
-    for (std::size_t i = 0; i < verts.size(); ++i) pos[i] = mesh.position(verts[i]);
-    const PointGrid vertex_index(pos);
-    normals_.reserve(points.size());
-    for (const Vec3& x : points) normals_.push_back(mesh.vertex_normal(verts[vertex_index.nearest(x)]));
+    vertex_normals_.resize(verts.size());
+    for (std::size_t i = 0; i < verts.size(); ++i) {
+        pos[i] = mesh.position(verts[i]);
+        vertex_normals_[i] = mesh.vertex_normal(verts[i]);
+    }
+    vertex_index_ = std::make_unique<PointGrid>(pos);
+    if (points.size() <= kStoredNormalsPerVertex * verts.size()) {
+        point_normals_.resize(points.size());
+        for (std::size_t i = 0; i < points.size(); ++i) point_normals_[i] = vertex_normals_[vertex_index_->nearest(points[i])];
+    }
 }
 
 Vec3 CloudSurface::pull(const Vec3& q, const Vec3& n, float limit, float reach) const {
@@ -622,7 +642,7 @@ Vec3 CloudSurface::pull(const Vec3& q, const Vec3& n, float limit, float reach) 
 }
 
 Vec3 CloudSurface::pull(const Vec3& q, const Vec3& n, float limit, float reach, const NearestPoint& near) const {
-    if (near.squared_distance > reach * reach || dot(normals_[near.index], n) <= 0.0f) return q;
+    if (near.squared_distance > reach * reach || dot(normal(near.index), n) <= 0.0f) return q;
     return q + n * std::clamp(dot(points_[near.index] - q, n), -limit, limit);
 }
 
@@ -635,6 +655,10 @@ void relax_tangentially(Mesh& mesh, const CloudSurface* cloud) {
 }
 
 // ---- optional: centroid fit -----------------------------------------------------------------------
+
+float estimate_hausdorff(const Mesh& mesh, const CloudSurface& surface) {
+    return HausdorffEstimate(mesh, surface).value();
+}
 
 void fit_centroids(Mesh& mesh, const std::vector<Vec3>& cloud, float weight) {
     const std::vector<Vertex> verts = alive_vertices(mesh);
@@ -893,22 +917,32 @@ RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fo
 
 bool is_flat(const std::vector<Vec3>& cloud) {
     if (cloud.size() < 4) return true;
-    // The plane through three far-apart points, then the largest distance from it.
+    // The plane through three far-apart points, then whether any point lies off it.
+    // Choice: the two far points are searched among every stride-th point only (about a million
+    // of them at most), so that a large cloud costs a fraction of a pass, plus the test, which
+    // stops at the first point off the plane; when those points are all on one line, among all
+    // points, as for a cloud of up to 2^21 points.
     const Vec3 a = cloud[0];
-    Vec3 b = a, c = a;
-    float best = -1.0f;
-    for (const Vec3& p : cloud)
-        if (squared_distance(a, p) > best) best = squared_distance(a, p), b = p;
-    best = -1.0f;
-    for (const Vec3& p : cloud) {
-        const float d = squared_norm(cross(p - a, b - a));
-        if (d > best) best = d, c = p;
+    for (std::size_t stride = std::max<std::size_t>(1, cloud.size() >> 20);; stride = 1) {
+        Vec3 b = a, c = a;
+        float best = -1.0f;
+        for (std::size_t i = 0; i < cloud.size(); i += stride)
+            if (squared_distance(a, cloud[i]) > best) best = squared_distance(a, cloud[i]), b = cloud[i];
+        best = -1.0f;
+        for (std::size_t i = 0; i < cloud.size(); i += stride) {
+            const float d = squared_norm(cross(cloud[i] - a, b - a));
+            if (d > best) best = d, c = cloud[i];
+        }
+        const Vec3 n = normalized(cross(b - a, c - a));
+        if (squared_norm(n) == 0.0f) {
+            if (stride == 1) return true;
+            continue;
+        }
+        const float limit = 1e-6f * distance(a, b);
+        for (const Vec3& p : cloud)
+            if (std::fabs(dot(p - a, n)) > limit) return false;
+        return true;
     }
-    const Vec3 n = normalized(cross(b - a, c - a));
-    if (squared_norm(n) == 0.0f) return true;
-    float extent = 0.0f;
-    for (const Vec3& p : cloud) extent = std::max(extent, std::fabs(dot(p - a, n)));
-    return extent <= 1e-6f * distance(a, b);
 }
 
 FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const FinishOptions& options,

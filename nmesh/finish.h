@@ -23,8 +23,12 @@
 // The vertex count never changes (collapses and splits are balanced at once) and every
 // topology operation is taken only when the mesh allows it (Mesh::can_flip, can_collapse), so the
 // result is a closed genus-0 2-manifold with exactly the vertices asked for.
-// Each pass is O(n) for a mesh of n vertices and a cloud of comparable size (the repair is local
-// to the defects): about 0.33 s for the 30,000-vertex bunny, against 1.3 s of learning.
+// Each pass is O(n) for a mesh of n vertices (the repair is local to the defects), whatever the
+// size of the cloud: a cloud larger than the mesh is read in full only by is_flat() and by the
+// nearest-point index (see CloudSurface and estimate_hausdorff for how the rest follows the
+// mesh). About 0.33 s for the 30,000-vertex bunny, against 1.3 s of learning; 2.1 s for 30,000
+// vertices from 36 million points on a sphere (26 s when every point had its own normal and its
+// own term in the repair's estimate).
 #pragma once
 
 #include <cstddef>
@@ -103,13 +107,23 @@ bool is_flat(const std::vector<Vec3>& cloud);
 // changes. Returns the number of flips.
 std::uint64_t flip_to_delaunay(Mesh& mesh, float max_dihedral_deg = 20.0f);
 
-// The cloud as the surface the relaxation pulls vertices towards. Each point gets a normal, that
+// The cloud as the surface the relaxation pulls vertices towards. Each point has a normal, that
 // of its nearest vertex in `mesh` (the learnt mesh), which tells the two sides of a part thinner
 // than a triangle apart.
+// Choice: for a cloud of more than kStoredNormalsPerVertex points per mesh vertex, a point's normal
+// is looked up when a pull needs it (its nearest vertex found in an index over the learnt mesh's
+// vertices, whose normals are computed once) instead of being stored for every point, so that
+// the stage's cost and memory follow the mesh, not the cloud: 36 million points and 30,000
+// vertices would otherwise take 36 million nearest-vertex queries and 430 MB of normals, for the
+// few hundred thousand pulls of the stage. A smaller cloud keeps them all, computed at once, which
+// costs less than a query per pull. Either way a point's normal is the same.
 class CloudSurface {
 public:
+    static constexpr std::size_t kStoredNormalsPerVertex = 8;
+
     // `points` (and `index`, a nearest-point index over exactly those points, or null to build
-    // one) must outlive the object. O(n) for n points.
+    // one) must outlive the object. O(m) for a mesh of m vertices, O(n) more for n points when
+    // their normals are stored; plus building `index` when none is given.
     CloudSurface(const std::vector<Vec3>& points, const Mesh& mesh, const PointGrid* index = nullptr);
     // q moved along the unit normal n towards the plane through its nearest cloud point (normal
     // n), by at most `limit`; q itself when that point faces the other way (its normal against n)
@@ -119,12 +133,21 @@ public:
     Vec3 pull(const Vec3& q, const Vec3& n, float limit, float reach, const NearestPoint& near) const;
     const std::vector<Vec3>& points() const { return points_; }
     const PointGrid& index() const { return *index_; }
+    // The normal of cloud point i: that of its nearest vertex in the learnt mesh.
+    const Vec3& normal(std::uint32_t i) const {
+        return point_normals_.empty() ? vertex_normals_[vertex_index_->nearest(points_[i])] : point_normals_[i];
+    }
+    // Whether every point's normal was computed at construction (a cloud of at most
+    // kStoredNormalsPerVertex points per mesh vertex).
+    bool stores_point_normals() const { return !point_normals_.empty(); }
 
 private:
     const std::vector<Vec3>& points_;
     std::unique_ptr<PointGrid> own_index_;  // when none was given
     const PointGrid* index_;
-    std::vector<Vec3> normals_;
+    std::unique_ptr<PointGrid> vertex_index_;  // over the learnt mesh's vertices
+    std::vector<Vec3> vertex_normals_;         // their normals, in the index's order
+    std::vector<Vec3> point_normals_;          // per cloud point, or empty (see the choice above)
 };
 
 // One round of tangential relaxation (all vertices moved from their old positions): every vertex
@@ -133,6 +156,14 @@ private:
 // edge length (CloudSurface::pull, reach: its mean edge length), and a vertex whose move would end
 // farther from the cloud than the mesh's mean edge length, and farther than it was, stays.
 void relax_tangentially(Mesh& mesh, const CloudSurface* cloud = nullptr);
+
+// The Hausdorff distance between `mesh` and the cloud of `surface` as the repair estimates it, to
+// refuse a repair that would move the surface away from the cloud: the larger of (a) the distance
+// from each measured cloud point to the triangles around its nearest vertex and (b) the distance
+// to the cloud from every vertex, edge midpoint and triangle centroid. Every cloud point is
+// measured up to 16 points per mesh vertex; beyond, every s-th point, s the smallest stride that
+// leaves at most 16 per vertex, so that the cost follows the mesh. O(m) for m vertices.
+float estimate_hausdorff(const Mesh& mesh, const CloudSurface& surface);
 
 // One damped Lloyd step of the centroids towards the cloud (see FinishOptions::fit_rounds).
 void fit_centroids(Mesh& mesh, const std::vector<Vec3>& cloud, float weight);

@@ -210,6 +210,66 @@ TEST_CASE("the pull towards the cloud ignores points facing the other way or out
     CHECK(surface.pull(q, up, 1.0f, 0.1f) == q);                         // out of reach
 }
 
+// The normal of each cloud point by brute force: that of the learnt vertex nearest to it (ties: the
+// vertex first in index order, as the index answers).
+std::vector<Vec3> brute_force_point_normals(const std::vector<Vec3>& points, const Mesh& mesh) {
+    std::vector<Vec3> normals;
+    for (const Vec3& x : points) {
+        Vertex best;
+        float best_d2 = 0.0f;
+        for (std::uint32_t v = 0; v < mesh.vertex_capacity(); ++v) {
+            if (mesh.is_removed(Vertex(v))) continue;
+            const float d2 = squared_distance(x, mesh.position(Vertex(v)));
+            if (!best.valid() || d2 < best_d2) best = Vertex(v), best_d2 = d2;
+        }
+        normals.push_back(mesh.vertex_normal(best));
+    }
+    return normals;
+}
+
+TEST_CASE("a cloud point's normal is its nearest learnt vertex's, stored or looked up") {
+    const Mesh mesh = Mesh::from_indexed(icosphere(2));  // 162 vertices
+    const std::size_t stored_up_to = CloudSurface::kStoredNormalsPerVertex * mesh.n_vertices();
+    for (const std::size_t n : {std::size_t(500), stored_up_to, stored_up_to + 1, std::size_t(4000)}) {
+        CAPTURE(n);
+        const std::vector<Vec3> points = sphere_cloud(n, 1.05f).points;
+        const CloudSurface surface(points, mesh);
+        CHECK(surface.stores_point_normals() == (n <= stored_up_to));
+        const std::vector<Vec3> expected = brute_force_point_normals(points, mesh);
+        std::size_t differ = 0;
+        for (std::uint32_t i = 0; i < points.size(); ++i) differ += !(surface.normal(i) == expected[i]);
+        CHECK(differ == 0);
+    }
+}
+
+TEST_CASE("the repair's Hausdorff estimate measures every point up to 16 per vertex, then a stride") {
+    const Mesh mesh = Mesh::from_indexed(icosphere(2));  // 162 vertices: every point up to 2,592
+    const std::size_t all_up_to = 16 * mesh.n_vertices();
+    const std::vector<Vec3> base = sphere_cloud(all_up_to, 1.02f).points;
+    const CloudSurface base_surface(base, mesh);
+    const float base_estimate = estimate_hausdorff(mesh, base_surface);
+    CHECK(base_estimate > 0.0f);
+    // Each point 20 times in a row: the stride is 20, so the measured points are the base cloud's.
+    std::vector<Vec3> repeated;
+    for (const Vec3& p : base)
+        for (int k = 0; k < 20; ++k) repeated.push_back(p);
+    const CloudSurface repeated_surface(repeated, mesh);
+    CHECK(estimate_hausdorff(mesh, repeated_surface) == base_estimate);
+    // A point far off the surface counts where it is measured, and only there.
+    const Vec3 far{0.0f, 0.0f, 3.0f};
+    std::vector<Vec3> measured_outlier = repeated, skipped_outlier = repeated;
+    measured_outlier[40] = far;  // a multiple of the stride
+    skipped_outlier[41] = far;
+    const CloudSurface measured_surface(measured_outlier, mesh), skipped_surface(skipped_outlier, mesh);
+    CHECK(estimate_hausdorff(mesh, measured_surface) > 1.5f);
+    CHECK(estimate_hausdorff(mesh, skipped_surface) == base_estimate);
+    // Up to 16 points per vertex, every one counts.
+    std::vector<Vec3> small_outlier = base;
+    small_outlier[41] = far;
+    const CloudSurface small_surface(small_outlier, mesh);
+    CHECK(estimate_hausdorff(mesh, small_surface) > 1.5f);
+}
+
 // ---- detection ------------------------------------------------------------------------------------
 
 TEST_CASE("self-intersections found by the grid are those of a brute-force search and of the metrics") {
@@ -324,6 +384,24 @@ TEST_CASE("a flat cloud is left alone") {
     const FinishReport r = finish_mesh(m, flat);
     CHECK(r.skipped_flat);
     CHECK(m.same_arrays(before));
+}
+
+TEST_CASE("is_flat on clouds large enough that the plane is found among every other point") {
+    // 2^21 + 6 points: the plane's far points are searched among every second point.
+    const std::size_t n = (std::size_t(1) << 21) + 6;
+    Random rng(11);
+    std::vector<Vec3> plane(n);
+    for (Vec3& p : plane) p = {float(rng.uniform()), float(rng.uniform()), 0.5f};
+    CHECK(is_flat(plane));
+    std::vector<Vec3> lifted = plane;
+    lifted[n - 1].z = 0.5001f;  // an odd index: not among the points the plane is searched in
+    CHECK_FALSE(is_flat(lifted));
+    // Every second point on one line: the search falls back on all points.
+    std::vector<Vec3> line_and_plane = plane, line_and_space = plane;
+    for (std::size_t i = 0; i < n; i += 2) line_and_plane[i] = line_and_space[i] = {float(rng.uniform()), 0.25f, 0.5f};
+    for (std::size_t i = 1; i < n; i += 2) line_and_space[i].z = float(rng.uniform());
+    CHECK(is_flat(line_and_plane));
+    CHECK_FALSE(is_flat(line_and_space));
 }
 
 TEST_CASE("the stage keeps a closed manifold with the same vertex count on several meshes") {
