@@ -656,10 +656,6 @@ void relax_tangentially(Mesh& mesh, const CloudSurface* cloud) {
 
 // ---- optional: centroid fit -----------------------------------------------------------------------
 
-float estimate_hausdorff(const Mesh& mesh, const CloudSurface& surface) {
-    return HausdorffEstimate(mesh, surface).value();
-}
-
 void fit_centroids(Mesh& mesh, const std::vector<Vec3>& cloud, float weight) {
     const std::vector<Vertex> verts = alive_vertices(mesh);
     const std::vector<Face> faces = alive_faces(mesh);
@@ -701,6 +697,10 @@ void fit_centroids(Mesh& mesh, const std::vector<Vec3>& cloud, float weight) {
 }
 
 // ---- pass 2: folds and self-intersections ---------------------------------------------------------
+
+float estimate_hausdorff(const Mesh& mesh, const CloudSurface& surface) {
+    return HausdorffEstimate(mesh, surface).value();
+}
 
 std::vector<std::pair<Face, Face>> find_self_intersections(const Mesh& mesh) {
     const std::vector<Face> faces = alive_faces(mesh);
