@@ -557,7 +557,10 @@ QualityReport evaluate(const std::vector<Vec3>& points, const IndexedMesh& mesh,
     const PointGrid centroid_index(centroids(mesh));
     const TriangleBvh bvh(mesh);
     double dm_sum = 0.0, p2s_sum = 0.0, p2s_sq_sum = 0.0, p2s_max = 0.0;
-    for (const Vec3& p : points) {
+    constexpr std::size_t kProgressMask = (std::size_t(1) << 18) - 1;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        if (options.progress && (i & kProgressMask) == 0 && i > 0) options.progress(double(i) / double(points.size()));
+        const Vec3& p = points[i];
         const NearestPoint c = centroid_index.find_nearest(p);
         dm_sum += std::sqrt(double(c.squared_distance));
         const auto& t = mesh.triangles[c.index];
@@ -569,6 +572,7 @@ QualityReport evaluate(const std::vector<Vec3>& points, const IndexedMesh& mesh,
         p2s_sq_sum += d2;
         p2s_max = std::max(p2s_max, d);
     }
+    if (options.progress) options.progress(1.0);
     const double n = double(points.size());
     r.dm_x_t = dm_sum / n;
     r.p2s_mean = p2s_sum / n;

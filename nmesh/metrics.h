@@ -17,6 +17,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <vector>
 
@@ -32,6 +33,10 @@ struct EvalOptions {
     std::size_t surface_samples = 200000;
     // Seed of the sampling; fixed so that two evaluations of the same mesh agree exactly.
     std::uint64_t seed = 1;
+    // Called with the share of the cloud's points measured so far (0 to 1), about every 2^18
+    // points and once at the end of that pass, which is most of the work on a large cloud: one
+    // exact nearest-triangle search per point. May be empty.
+    std::function<void(double fraction)> progress;
 };
 
 struct QualityReport {

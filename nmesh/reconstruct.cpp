@@ -100,6 +100,13 @@ void require_reconstructible(const std::vector<Vec3>& pts) {
 
 }  // namespace
 
+double estimated_seconds_left(const Progress& p) {
+    if (p.settling || p.target_vertices == 0 || p.vertices == 0) return -1.0;
+    const double fraction = std::min(1.0, double(p.vertices) / double(p.target_vertices));
+    const double loop = std::max(0.0, p.seconds - p.setup_seconds);
+    return loop * (1.0 - fraction) / fraction;
+}
+
 Result reconstruct(const PointCloud& cloud, const Parameters& params, const Callbacks& callbacks) {
     params.validate();
     require_reconstructible(cloud.points);
@@ -120,6 +127,7 @@ Result reconstruct(const PointCloud& cloud, const Parameters& params, const Call
     Result result;
     Progress progress;
     progress.target_vertices = params.target_vertices;
+    progress.setup_seconds = elapsed();
     auto report = [&](bool settling) {
         if (!callbacks.progress) return true;
         progress.vertices = engine.mesh().n_vertices();

@@ -75,9 +75,17 @@ struct Progress {
     std::uint32_t vertices = 0;
     std::uint32_t target_vertices = 0;
     std::uint64_t iterations = 0;
-    double seconds = 0.0;
+    double seconds = 0.0;        // since reconstruct() began
+    double setup_seconds = 0.0;  // the part of `seconds` before the first iteration (normalising
+                                 // the cloud, building its nearest-point index)
     bool settling = false;
 };
+
+// The learning time left, in seconds, extrapolated from the progress so far: the iterations per
+// vertex are fixed (a split every Cvs), so the loop's time grows with the vertices; the setup,
+// which can be most of the early time on a cloud of millions of points, is left out.
+// Negative when unknown (no vertex gained yet, or settling).
+double estimated_seconds_left(const Progress& progress);
 
 struct Callbacks {
     // Return false to stop: reconstruct() then returns the mesh reached so far, with

@@ -664,3 +664,21 @@ TEST_CASE("the bunny scan against the original Stanford mesh") {
     CHECK(r.dm_x_t < 0.001);
     CHECK(r.s2p_max < 0.003);
 }
+
+TEST_CASE("evaluate reports the share of the cloud measured, and the same figures with or without it") {
+    // 300,000 points: one report at 2^18 points, one at the end.
+    const std::vector<Vec3> points = nmesh::test::sphere_cloud(300000, 1.01f).points;
+    const IndexedMesh mesh = icosphere(2);
+    EvalOptions quiet;
+    quiet.surface_samples = 20000;
+    EvalOptions reported = quiet;
+    std::vector<double> fractions;
+    reported.progress = [&](double f) { fractions.push_back(f); };
+    const QualityReport a = nmesh::evaluate(points, mesh, quiet), b = nmesh::evaluate(points, mesh, reported);
+    CHECK(fractions == std::vector<double>{262144.0 / 300000.0, 1.0});
+    CHECK(a.dm_x_t == b.dm_x_t);
+    CHECK(a.p2s_mean == b.p2s_mean);
+    CHECK(a.p2s_max == b.p2s_max);
+    CHECK(a.s2p_mean == b.s2p_mean);
+    CHECK(a.hausdorff == b.hausdorff);
+}

@@ -372,6 +372,45 @@ TEST_CASE("cancellation stops the run and returns a valid smaller mesh") {
     require_closed_manifold(r.mesh);
 }
 
+TEST_CASE("progress reports the setup apart, and the time left leaves it out") {
+    const PointCloud cloud = sphere_cloud(20000);
+    Parameters p;
+    p.target_vertices = 2000;
+    Callbacks cb;
+    std::vector<Progress> reports;
+    cb.progress = [&](const Progress& pr) {
+        reports.push_back(pr);
+        return true;
+    };
+    reconstruct(cloud, p, cb);
+    REQUIRE(reports.size() >= 2);
+    for (const Progress& pr : reports) {
+        CHECK(pr.setup_seconds > 0.0);
+        CHECK(pr.setup_seconds == reports.front().setup_seconds);
+        CHECK(pr.setup_seconds <= pr.seconds);
+    }
+    Progress half;
+    half.vertices = 1000;
+    half.target_vertices = 2000;
+    half.seconds = 10.0;
+    half.setup_seconds = 4.0;
+    CHECK(estimated_seconds_left(half) == doctest::Approx(6.0));  // 6 s of loop for half the vertices
+    half.setup_seconds = 0.0;
+    CHECK(estimated_seconds_left(half) == doctest::Approx(10.0));
+    Progress quarter = half;
+    quarter.vertices = 500;
+    CHECK(estimated_seconds_left(quarter) == doctest::Approx(30.0));
+    Progress done = half;
+    done.vertices = 2000;
+    CHECK(estimated_seconds_left(done) == 0.0);
+    Progress settling = done;
+    settling.settling = true;
+    CHECK(estimated_seconds_left(settling) < 0.0);
+    Progress none = half;
+    none.vertices = 0;
+    CHECK(estimated_seconds_left(none) < 0.0);
+}
+
 TEST_CASE("snapshots arrive at the requested sizes, in order") {
     const PointCloud cloud = sphere_cloud(4000);
     Parameters p;

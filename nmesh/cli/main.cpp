@@ -3,6 +3,7 @@
 // Exit status: 0 success, 1 runtime error (one line naming the file and the problem),
 // 2 usage error (one line and a hint), 130 interrupted.
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -184,6 +185,20 @@ void write_stats(const std::string& path, const std::string& input, const Parame
     });
 }
 
+// evaluate(), with its progress on stderr when it takes long (a cloud of millions of points).
+QualityReport evaluate_with_progress(const std::vector<Vec3>& points, const IndexedMesh& mesh, bool quiet) {
+    ProgressBar bar(ProgressBar::detect(quiet));
+    const auto start = std::chrono::steady_clock::now();
+    EvalOptions options;
+    options.progress = [&](double fraction) {
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        bar.task("measuring the mesh against the cloud", fraction, seconds);
+    };
+    const QualityReport q = evaluate(points, mesh, options);
+    bar.finish();
+    return q;
+}
+
 int run_reconstruct(int argc, char** argv) {
     if (wants_help(argc, argv)) {
         std::fputs(kReconstructUsage, stdout);
@@ -281,7 +296,7 @@ int run_reconstruct(int argc, char** argv) {
     }
     write_mesh(output, r.mesh, write_options);
     if (args.has("--stats")) {
-        const QualityReport q = evaluate(cloud.points, r.mesh);
+        const QualityReport q = evaluate_with_progress(cloud.points, r.mesh, quiet);
         write_stats(stats_path, input, p, r, q);
         if (!quiet)
             std::fprintf(stderr, "nmesh: DM(X,T) %.6g, Hausdorff %.3g%% of the diagonal; wrote %s\n", q.dm_x_t,
@@ -301,7 +316,7 @@ int run_eval(int argc, char** argv) {
     const PointCloud cloud = read_points(args.positional()[0]);
     const IndexedMesh mesh = read_mesh(args.positional()[1]);
     if (cloud.empty()) throw IoError(args.positional()[0] + ": no points");
-    const QualityReport q = evaluate(cloud.points, mesh);
+    const QualityReport q = evaluate_with_progress(cloud.points, mesh, false);
     if (args.has("--json")) {
         write_json(std::cout, q);
         std::cout << "\n";

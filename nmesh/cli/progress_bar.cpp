@@ -28,8 +28,10 @@ void ProgressBar::update(const Progress& p) {
     if (last_print_ >= 0.0 && p.seconds - last_print_ < interval) return;
     last_print_ = p.seconds;
     const double fraction = p.target_vertices ? std::min(1.0, double(p.vertices) / p.target_vertices) : 0.0;
-    const double rate = p.seconds > 0 ? double(p.iterations) / p.seconds : 0.0;
-    const std::string left = fraction > 0.0 && !p.settling ? clock_text(p.seconds * (1.0 - fraction) / fraction) : "-";
+    const double loop_seconds = p.seconds - p.setup_seconds;  // the rate of the loop, setup left out
+    const double rate = loop_seconds > 0 ? double(p.iterations) / loop_seconds : 0.0;
+    const double seconds_left = estimated_seconds_left(p);
+    const std::string left = seconds_left >= 0.0 ? clock_text(seconds_left) : "-";
     if (mode_ == Mode::terminal) {
         constexpr int kWidth = 30;
         const int filled = int(fraction * kWidth);
@@ -43,6 +45,24 @@ void ProgressBar::update(const Progress& p) {
         std::fprintf(out_, "nmesh: %u / %u vertices%s, %.1f M it/s, %s elapsed, %s left\n", p.vertices,
                      p.target_vertices, p.settling ? " (settling)" : "", rate / 1e6, clock_text(p.seconds).c_str(),
                      left.c_str());
+    }
+    std::fflush(out_);
+}
+
+void ProgressBar::task(const char* what, double fraction, double seconds) {
+    if (mode_ == Mode::quiet) return;
+    // The end is shown when anything was; before, a line at most every 0.1 s on a terminal (the
+    // first after a second), every 5 seconds otherwise.
+    const double interval = mode_ == Mode::terminal ? (task_shown_ ? 0.1 : 1.0) : 5.0;
+    if (!(fraction >= 1.0 && task_shown_) && seconds - last_task_print_ < interval) return;
+    last_task_print_ = seconds;
+    task_shown_ = true;
+    const int percent = int(std::min(1.0, std::max(0.0, fraction)) * 100.0);
+    if (mode_ == Mode::terminal) {
+        std::fprintf(out_, "\rnmesh: %s: %d%%, %s elapsed   ", what, percent, clock_text(seconds).c_str());
+        drawn_ = true;
+    } else {
+        std::fprintf(out_, "nmesh: %s: %d%%, %s elapsed\n", what, percent, clock_text(seconds).c_str());
     }
     std::fflush(out_);
 }

@@ -19,12 +19,18 @@ public:
     static Mode detect(bool quiet);
 
     void update(const Progress& p);
+    // Progress of another long task (measuring the mesh for --stats or eval): `what`, the share
+    // done and the time it has taken. Nothing for a task that ends within a second on a terminal
+    // or within five seconds otherwise.
+    void task(const char* what, double fraction, double seconds);
     void finish();  // ends the terminal line
 
 private:
     Mode mode_;
     std::FILE* out_;
     double last_print_ = -1.0;
+    double last_task_print_ = 0.0;
+    bool task_shown_ = false;
     bool drawn_ = false;
 };
 
