@@ -354,9 +354,26 @@ TEST_CASE("point-to-surface distances match brute force and closed forms") {
             worst = std::max(worst, d);
         }
         const QualityReport r = quick_evaluate(t, points);
-        CHECK(r.p2s_mean == doctest::Approx(sum / 400).epsilon(1e-9));
+        // The same distances in the same order: the same sums, bit for bit.
+        CHECK(r.p2s_mean == sum / 400);
         CHECK(r.p2s_rms == doctest::Approx(std::sqrt(sq / 400)).epsilon(1e-9));
-        CHECK(r.p2s_max == doctest::Approx(worst).epsilon(1e-9));
+        CHECK(r.p2s_max == worst);
+    }
+    SUBCASE("points near a finely tessellated torus (a deep hierarchy)") {
+        std::mt19937 rng(24);
+        std::uniform_real_distribution<float> u(-1.6f, 1.6f);
+        const IndexedMesh t = torus(1.0f, 0.4f, 96, 48);  // 9,216 triangles
+        std::vector<Vec3> points;
+        for (int i = 0; i < 2000; ++i) points.push_back({u(rng), u(rng), u(rng) * 0.4f});
+        double sum = 0, worst = 0;
+        for (const Vec3& p : points) {
+            const double d = brute_force_p2s(p, t);
+            sum += d;
+            worst = std::max(worst, d);
+        }
+        const QualityReport r = quick_evaluate(t, points);
+        CHECK(r.p2s_mean == sum / 2000);
+        CHECK(r.p2s_max == worst);
     }
     SUBCASE("points on a sphere are within the sagitta of its icosphere") {
         // Every unit-sphere point lies outside the inscribed polyhedron, within 1 - (the smallest
