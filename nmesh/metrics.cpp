@@ -152,6 +152,8 @@ public:
             if (box_squared_distance(n.box, p) > best) continue;
             if (n.count > 0) {
                 for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+                    // A triangle whose box is farther than the best cannot be nearer.
+                    if (box_squared_distance(boxes_[order_[i]], p) > best) continue;
                     const auto& t = mesh_.triangles[order_[i]];
                     const double d = point_triangle_squared_distance(
                         p, mesh_.positions[t[0]], mesh_.positions[t[1]], mesh_.positions[t[2]]);
