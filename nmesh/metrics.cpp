@@ -144,12 +144,19 @@ public:
     // Squared distance from p to the nearest triangle, given an upper bound on it (kInf if none).
     double nearest_squared_distance(const Vec3& p, double bound) const {
         double best = bound;
-        std::uint32_t stack[64];
+        // Each entry keeps its box's distance, computed when it was pushed: on popping, the best
+        // may since have dropped below it.
+        struct Entry {
+            std::uint32_t node;
+            double box_distance;
+        };
+        Entry stack[64];
         int top = 0;
-        stack[top++] = 0;
+        stack[top++] = {0, box_squared_distance(nodes_[0].box, p)};
         while (top > 0) {
-            const Node& n = nodes_[stack[--top]];
-            if (box_squared_distance(n.box, p) > best) continue;
+            const Entry e = stack[--top];
+            if (e.box_distance > best) continue;
+            const Node& n = nodes_[e.node];
             if (n.count > 0) {
                 for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
                     // A triangle whose box is farther than the best cannot be nearer.
@@ -167,11 +174,11 @@ public:
             const double dr = box_squared_distance(nodes_[r].box, p);
             assert(top + 2 <= 64);
             if (dl <= dr) {
-                if (dr <= best) stack[top++] = r;
-                if (dl <= best) stack[top++] = l;
+                if (dr <= best) stack[top++] = {r, dr};
+                if (dl <= best) stack[top++] = {l, dl};
             } else {
-                if (dl <= best) stack[top++] = l;
-                if (dr <= best) stack[top++] = r;
+                if (dl <= best) stack[top++] = {l, dl};
+                if (dr <= best) stack[top++] = {r, dr};
             }
         }
         return best;
