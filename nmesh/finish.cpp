@@ -175,8 +175,7 @@ public:
         const PointGrid index(pos);
         const std::vector<Vec3>& points = cloud.points();
         const std::size_t most = kPointsPerVertex * std::max<std::size_t>(verts.size(), 1);
-        stride_ = (points.size() + most - 1) / most;
-        stride_ = std::max<std::size_t>(stride_, 1);
+        stride_ = std::max<std::size_t>(1, (points.size() + most - 1) / most);
         nearest_.reserve(points.size() / stride_ + 1);
         for (std::size_t i = 0; i < points.size(); i += stride_) {
             const Vertex v = verts[index.nearest(points[i])];

@@ -197,7 +197,7 @@ void NeuralMesh::adapt_ahead(const Vec3& x) {
     rings_.prefetch(Vertex(early_));
     grid_.prefetch_move(early_);   // its slot, for its move at step 3
     activity_.prefetch(early_);    // its record, for its signal at step 5
-    activity_.prefetch(w.idx);
+    if (!prefetched) activity_.prefetch(w.idx);  // else asked for a whole iteration ago, as early_
     std::uint32_t k = 0;
     const std::uint32_t* ring = ring_of(w, ring_, k);
     update(w, x, ring, k, prefetched);
