@@ -29,7 +29,8 @@
 // Times. `seconds` is Statistics::seconds of nmesh::reconstruct (learning, including the
 // normalisation of the cloud and the building of its nearest-point index; excluding the reading
 // or generation of the cloud). `setup` is the same figure for a 4-vertex target (4 Cvs iterations of the tetrahedron,
-// normalisation, index), measured separately (median of R runs); `loop` is
+// normalisation, an index of as many points as the timed runs': setup_only()), measured
+// separately (median of R runs); `loop` is
 // seconds - setup. Each figure is the median, minimum and maximum of R runs with the default
 // parameters (Table 2 of the paper, seed 1: all runs are identical but for their timing), except
 // that the finishing stage after learning (Parameters::finish) is switched off: these are the
@@ -38,13 +39,15 @@
 // Memory, read from /proc/self/status (Linux); peaks are VmHWM, reset through
 // /proc/self/clear_refs. The cloud (PointCloud: 12 bytes per point) is in memory throughout and is
 // never counted. Two measurements, each from the same fresh state (the cloud just generated):
-//   - the input storage, in a forked child: reconstruct() with a 4-vertex target (the tetrahedron),
+//   - the input storage, in a forked child: reconstruct() with setup_only()'s 4-vertex target,
 //     VmRSS and VmHWM read from the progress report that reconstruct() makes when the learning
 //     ends, while the engine is still alive, minus VmRSS before the call. The resident memory the
 //     engine adds per input point (the nearest-point index, which holds a sorted copy of the
-//     normalised points; the engine normalises its samples on the fly and keeps no copy of its
-//     own), and the peak per input point while the engine is built (the index's temporary arrays
-//     included). The index alone per PointGrid::memory_bytes is given too;
+//     normalised points, or of the stratified sample of them that stands for a cloud of more than
+//     Parameters::index_points_per_vertex points per vertex; the engine normalises its samples
+//     on the fly and keeps no copy of its own), and the peak per input point while the engine is
+//     built (the index's temporary arrays included). The index alone per
+//     Statistics::index_bytes (PointGrid::memory_bytes) of the timed runs is given too;
 //   - the mesh, in the first timed run: VmHWM from the first progress report (65,536
 //     iterations, after the engine is built) to the return of reconstruct(), minus VmRSS before
 //     the call, minus the input storage. Bytes per vertex = that / N. reconstruct() builds the
@@ -69,7 +72,7 @@
 #include <unistd.h>
 
 #include "nmesh/error.h"
-#include "nmesh/point_grid.h"
+#include "nmesh/cloud_sample.h"
 #include "nmesh/point_reader.h"
 #include "nmesh/random.h"
 #include "nmesh/reconstruct.h"
@@ -252,7 +255,7 @@ void append_csv(const std::string& path, const std::string& line) {
 // heap is not disturbed: {resident bytes the engine adds, peak bytes while it is built}, both
 // over VmRSS before the call, read at the progress report reconstruct() makes when the learning
 // ends (the engine still alive) with a 4-vertex target (the tetrahedron only: 4 Cvs iterations).
-std::pair<double, double> input_memory(const nmesh::PointCloud& cloud) {
+std::pair<double, double> input_memory(const nmesh::PointCloud& cloud, const nmesh::Parameters& setup_params) {
     int fds[2];
     if (pipe(fds) != 0) throw nmesh::Error("input_memory: cannot create a pipe");
     const pid_t child = fork();
@@ -263,9 +266,7 @@ std::pair<double, double> input_memory(const nmesh::PointCloud& cloud) {
         if (reset_peak()) {
             const MemoryStatus before = memory_status();
             MemoryStatus at_end;
-            nmesh::Parameters p;
-            p.target_vertices = 4;
-            p.finish = false;
+            const nmesh::Parameters& p = setup_params;
             nmesh::Callbacks cb;
             cb.progress = [&](const nmesh::Progress&) {
                 at_end = memory_status();
@@ -292,13 +293,26 @@ std::pair<double, double> input_memory(const nmesh::PointCloud& cloud) {
     return {result[0], result[1]};
 }
 
+// The setup of a run with `params` on a cloud of n points, alone: a 4-vertex target (the
+// tetrahedron: 4 Cvs iterations, about 0.1 ms) whose nearest-point index holds as many points as
+// that run's (Parameters::index_points_per_vertex scaled up; the stratified sample of a count
+// rounded up to a multiple of 4, at most 3 points more).
+nmesh::Parameters setup_only(const nmesh::Parameters& params, std::size_t n) {
+    nmesh::Parameters p4 = params;
+    p4.target_vertices = 4;
+    const std::size_t indexed = nmesh::index_point_count(n, params);
+    p4.index_points_per_vertex = indexed == n ? 0 : std::uint32_t((indexed + 3) / 4);
+    return p4;
+}
+
 // `output` and `input`: R timed reconstructions, the setup alone, and the memory.
 void run_reconstruction(const Options& o, const nmesh::PointCloud& cloud, std::uint32_t k) {
     nmesh::Parameters params;
     params.target_vertices = o.vertices;
     params.finish = false;  // the figures of the learning algorithm, not of the stage after it
     const double P = double(cloud.size()), N = double(o.vertices);
-    const auto [input_bytes, setup_peak_bytes] = input_memory(cloud);
+    const nmesh::Parameters p4 = setup_only(params, cloud.size());
+    const auto [input_bytes, setup_peak_bytes] = input_memory(cloud, p4);
 
     // What the progress callback records in the first run, at the first progress report.
     struct Probe {
@@ -327,6 +341,7 @@ void run_reconstruction(const Options& o, const nmesh::PointCloud& cloud, std::u
     MemoryStatus before, after;
     bool resettable = false;
     std::size_t output_bytes = 0, output_vertices = 0;
+    double index_pp = NAN;  // the engine's nearest-point index on its own, per input point
     for (int r = 0; r < o.runs; ++r) {
         probe.active = r == 0;
         probe.seen = false;
@@ -343,6 +358,7 @@ void run_reconstruction(const Options& o, const nmesh::PointCloud& cloud, std::u
             output_bytes = res.mesh.positions.capacity() * sizeof(nmesh::Vec3) +
                            res.mesh.triangles.capacity() * sizeof(res.mesh.triangles[0]);
             output_vertices = res.mesh.positions.size();
+            index_pp = double(res.stats.index_bytes) / P;
         }
         seconds.push_back(res.stats.seconds);
         rates.push_back(double(res.stats.iterations) / res.stats.seconds);
@@ -353,13 +369,9 @@ void run_reconstruction(const Options& o, const nmesh::PointCloud& cloud, std::u
         throw nmesh::Error("the mesh has " + std::to_string(output_vertices) + " vertices, not " +
                            std::to_string(o.vertices));
 
-    // The setup alone: a 4-vertex target (the tetrahedron: 4 Cvs iterations, about 0.1 ms).
+    // The setup alone.
     std::vector<double> setup;
-    nmesh::Parameters p4 = params;
-    p4.target_vertices = 4;
     for (int r = 0; r < o.runs; ++r) setup.push_back(nmesh::reconstruct(cloud, p4).stats.seconds);
-    // The engine's nearest-point index over this cloud, on its own.
-    const double index_pp = double(nmesh::PointGrid(cloud.points).memory_bytes()) / P;
 
     const Summary t = summarize(seconds), it = summarize(rates), su = summarize(setup), ca = summarize(calls);
     double mesh_peak = NAN, per_vertex = NAN, raw_pv = NAN;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "nmesh/cloud_sample.h"
 #include "nmesh/float4.h"
 #include "nmesh/prefetch.h"
 
@@ -32,7 +33,13 @@ NeuralMesh::NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bound
         grid_.insert(v, mesh_.position(Vertex(v)));
         activity_.add(v, 0.0);
     }
-    if (params_.edge_swap) cloud_index_ = std::make_unique<PointGrid>(points_, transform_, bounds);
+    if (params_.edge_swap) {
+        // Eq. (9) against the cloud, or against the stratified sample that stands for a cloud
+        // much denser than the mesh (Parameters::index_points_per_vertex).
+        cloud_index_ = index_cloud(points_, transform_, bounds, params_);
+        stats_.indexed_points = cloud_index_->size();
+        stats_.index_bytes = cloud_index_->memory_bytes();
+    }
     next_removal_ = std::uint64_t(params_.cec) * mesh_.n_vertices();
     for (Vec3& a : ahead_) a = transform_(points_[rng_.below(std::uint32_t(points_.size()))]);
     ahead_index_ = rng_.below(std::uint32_t(points_.size()));

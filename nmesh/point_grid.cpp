@@ -179,6 +179,12 @@ void PointGrid::build(const std::vector<Vec3>& points, const PointTransform& tra
     }
 }
 
+std::vector<Vec3> PointGrid::indexed_points() const {
+    std::vector<Vec3> points(entries_.size());
+    for (const Entry& e : entries_) points[e.index] = e.point;
+    return points;
+}
+
 std::size_t PointGrid::memory_bytes() const {
     std::size_t bytes = sizeof(*this);
     bytes += entries_.capacity() * sizeof(Entry);

@@ -84,6 +84,10 @@ public:
     std::size_t occupied_cells() const { return cell_start_.size() - 1; }
     // Bytes held by the index, including the sorted copy of the points.
     std::size_t memory_bytes() const;
+    // The indexed points as the index holds them (transformed), in the order of their indices:
+    // element i is the point find_nearest() names by index i. O(n); for a caller that needs the
+    // points beside the index (the finishing stage) without keeping a copy of its own.
+    std::vector<Vec3> indexed_points() const;
 
     // Target number of points per occupied cell for surface data: fewer cells per query to visit
     // against more distances per cell. Near queries cost the same from 2 to 8 (within 7%);

@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "nmesh/cloud_sample.h"
 #include "nmesh/error.h"
 #include "nmesh/finish.h"
 #include "nmesh/neural_mesh.h"
@@ -39,8 +40,8 @@ struct Normalization {
     PointTransform transform;  // normalised = (p - center) * scale
     BoundingBox bounds;        // of the normalised points
 
-    explicit Normalization(const PointCloud& cloud) {
-        const BoundingBox box = cloud.bounds();
+    // `box`: the bounding box of the cloud.
+    explicit Normalization(const BoundingBox& box) {
         transform.center = box.center();
         const double diag = box.diagonal();
         transform.scale = diag > 0.0 ? float(std::ldexp(1.0, -std::ilogb(diag) - 1)) : 1.0f;
@@ -51,11 +52,6 @@ struct Normalization {
         bounds.extend(transform(box.min));
         bounds.extend(transform(box.max));
     }
-    std::vector<Vec3> normalised(const PointCloud& cloud) const {
-        std::vector<Vec3> points(cloud.size());
-        for (std::size_t i = 0; i < points.size(); ++i) points[i] = transform(cloud.points[i]);
-        return points;
-    }
     IndexedMesh to_input(IndexedMesh m) const {
         const float inv = 1.0f / transform.scale;
         for (Vec3& p : m.positions) p = p * inv + transform.center;
@@ -65,26 +61,28 @@ struct Normalization {
 
 // Throws InputError unless the cloud has four affinely independent points (a tetrahedron's
 // worth); a flat but not collinear cloud is accepted (the mesh is then a flattened closed
-// surface). O(n).
-void require_reconstructible(const std::vector<Vec3>& pts) {
-    for (const Vec3& p : pts)
-        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-            throw InputError("the point cloud holds a non-finite coordinate");
+// surface). Returns the cloud's bounding box. Two passes over the cloud (the box; the point
+// farthest from the first), then passes that stop at the first point off the line and at the
+// fourth distinct point. A non-finite coordinate shows as an infinite box or a NaN distance.
+BoundingBox require_reconstructible(const std::vector<Vec3>& pts) {
     if (pts.size() < 4) throw InputError("the point cloud has " + std::to_string(pts.size()) + " points; at least 4 distinct points are needed");
-    // Farthest point from the first, then the point farthest from that line.
+    const BoundingBox box = bounding_box(pts);
     const Vec3 a = pts[0];
     Vec3 b = a;
     float best = 0.0f;
-    for (const Vec3& p : pts)
-        if (squared_distance(a, p) > best) best = squared_distance(a, p), b = p;
-    if (best == 0.0f) throw InputError("all points of the cloud are identical");
-    const Vec3 dir = b - a;
-    best = 0.0f;
+    bool nan = false;
     for (const Vec3& p : pts) {
-        const float d = squared_norm(cross(p - a, dir));
-        if (d > best) best = d;
+        const float d = squared_distance(a, p);
+        nan = nan || d != d;
+        if (d > best) best = d, b = p;
     }
-    if (best <= 1e-12f * squared_norm(dir) * squared_norm(dir))
+    const auto finite = [](const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+    if (nan || !finite(box.min) || !finite(box.max)) throw InputError("the point cloud holds a non-finite coordinate");
+    if (best == 0.0f) throw InputError("all points of the cloud are identical");
+    // A point off the line through a and b, the point farthest from a.
+    const Vec3 dir = b - a;
+    const float off_line = 1e-12f * squared_norm(dir) * squared_norm(dir);
+    if (std::none_of(pts.begin(), pts.end(), [&](const Vec3& p) { return squared_norm(cross(p - a, dir)) > off_line; }))
         throw InputError("all points of the cloud lie on one line");
     // At least four distinct points.
     Vec3 distinct[4] = {a};
@@ -93,7 +91,7 @@ void require_reconstructible(const std::vector<Vec3>& pts) {
         bool seen = false;
         for (int i = 0; i < count; ++i) seen = seen || distinct[i] == p;
         if (!seen) distinct[count++] = p;
-        if (count == 4) return;
+        if (count == 4) return box;
     }
     throw InputError("the point cloud has only " + std::to_string(count) + " distinct points; at least 4 are needed");
 }
@@ -109,12 +107,11 @@ double estimated_seconds_left(const Progress& p) {
 
 Result reconstruct(const PointCloud& cloud, const Parameters& params, const Callbacks& callbacks) {
     params.validate();
-    require_reconstructible(cloud.points);
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
-    const Normalization norm(cloud);
+    const Normalization norm(require_reconstructible(cloud.points));
     // On the heap, so that it can be destroyed, and its memory freed, as soon as the learning ends.
     auto engine_ptr = std::make_unique<NeuralMesh>(cloud.points, norm.bounds, params, norm.transform);
     NeuralMesh& engine = *engine_ptr;
@@ -202,18 +199,24 @@ Result reconstruct(const PointCloud& cloud, const Parameters& params, const Call
     // The learnt mesh leaves the engine, which is destroyed: what follows (the finishing stage,
     // the output mesh) does not add to the memory of the grid, activity index and ring cache.
     Mesh learnt = engine.take_mesh();
-    // The finishing stage needs a nearest-point index over the normalised cloud: the engine's,
-    // when it has one (the same points, transformed on the fly), is kept for it.
+    // The finishing stage works on the cloud the engine's nearest-point index holds (all of it or
+    // the sample of Parameters::index_points_per_vertex, normalised), with that index; without
+    // an edge swap the engine has none, and the same index is built now.
     std::unique_ptr<PointGrid> cloud_index = finish ? engine.take_cloud_index() : nullptr;
     engine_ptr.reset();
     // The finishing stage (nmesh/finish.h), on a copy of the learnt mesh; should it ever fail to
     // keep the vertex count, the learnt mesh is returned as it is.
     bool finished = false;
     if (finish) {
+        if (!cloud_index) {
+            cloud_index = index_cloud(cloud.points, norm.transform, norm.bounds, params);
+            result.stats.indexed_points = cloud_index->size();
+            result.stats.index_bytes = cloud_index->memory_bytes();
+        }
         Mesh mesh = learnt;
         FinishOptions options;
         options.rounds = int(params.finish_rounds);
-        finish_mesh(mesh, norm.normalised(cloud), options, cloud_index.get());
+        finish_mesh(mesh, cloud_index->indexed_points(), options, cloud_index.get());
         cloud_index.reset();
         if (mesh.n_vertices() == learnt.n_vertices()) {
             learnt = Mesh();

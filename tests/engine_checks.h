@@ -1,10 +1,13 @@
-// tests/engine_checks.h — the whole-state check of a learning engine, for tests that drive one.
+// tests/engine_checks.h — the whole-state check of a learning engine, for tests that drive one, and
+// the check of a reconstruction's result.
 #pragma once
 
 #include <doctest/doctest.h>
 
 #include <string>
 
+#include "nmesh/indexed_mesh.h"
+#include "nmesh/mesh.h"
 #include "nmesh/mesh_check.h"
 #include "nmesh/neural_mesh.h"
 
@@ -18,6 +21,17 @@ inline void require_engine_valid(const NeuralMesh& engine) {
     const std::string consistency = engine.check_consistency();
     INFO(consistency);
     REQUIRE(consistency.empty());
+}
+
+// A reconstruction result must be a closed genus-0 2-manifold: rebuild the half-edge form
+// (which rejects anything else) and run the validator.
+inline void require_closed_manifold(const IndexedMesh& m) {
+    REQUIRE(m.positions.size() >= 4);
+    const Mesh mesh = Mesh::from_indexed(m);  // throws unless closed, oriented, genus 0
+    const ManifoldCheck c = check_manifold(mesh);
+    INFO(c.error);
+    REQUIRE(c.ok);
+    CHECK(m.triangles.size() == 2 * m.positions.size() - 4);
 }
 
 }  // namespace nmesh::test

@@ -17,23 +17,9 @@
 #include "nmesh/reconstruct.h"
 
 using namespace nmesh;
+using nmesh::test::require_closed_manifold;
 using nmesh::test::shared_bunny;
 using nmesh::test::sphere_cloud;
-
-namespace {
-
-// A reconstruction result must be a closed genus-0 2-manifold: rebuild the half-edge form
-// (which rejects anything else) and run the validator.
-void require_closed_manifold(const IndexedMesh& m) {
-    REQUIRE(m.positions.size() >= 4);
-    const Mesh mesh = Mesh::from_indexed(m);  // throws unless closed, oriented, genus 0
-    const ManifoldCheck c = check_manifold(mesh);
-    INFO(c.error);
-    REQUIRE(c.ok);
-    CHECK(m.triangles.size() == 2 * m.positions.size() - 4);
-}
-
-}  // namespace
 
 TEST_CASE("a sphere sample reconstructs to a sphere") {
     const PointCloud cloud = sphere_cloud(20000, 1.0f);
@@ -275,6 +261,7 @@ TEST_CASE("the real bunny reconstructs to a closed genus-0 manifold close to the
     const Result r = reconstruct(bunny, p);
     require_closed_manifold(r.mesh);
     CHECK(r.mesh.positions.size() == 5000);
+    CHECK(r.stats.indexed_points == bunny.size());  // 64 points per vertex would be 320,000
     // Every vertex near the scan. The bound: 3.5% of the bounding-box diagonal (9 mm), because
     // a closed surface must span the scanner holes in the base (about 1 cm wide), and a vertex
     // on those patches lies as far from the nearest scanned point as the patch does: closed
@@ -489,9 +476,17 @@ TEST_CASE("clouds that cannot be reconstructed are refused with a reason") {
     PointCloud three;  // many points but only three distinct ones
     for (int i = 0; i < 30; ++i) three.points.push_back(few.points[std::size_t(i % 3)]);
     CHECK_THROWS_WITH_AS(reconstruct(three, p), doctest::Contains("3 distinct"), InputError);
-    PointCloud nan = sphere_cloud(100);
-    nan.points[5].y = std::nanf("");
-    CHECK_THROWS_WITH_AS(reconstruct(nan, p), doctest::Contains("non-finite"), InputError);
+    // A NaN or an infinity in any coordinate of any point, the first and the last included.
+    for (const float bad : {std::nanf(""), INFINITY, -INFINITY})
+        for (const std::size_t at : {std::size_t(0), std::size_t(1), std::size_t(5), std::size_t(99)})
+            for (int axis = 0; axis < 3; ++axis) {
+                CAPTURE(bad);
+                CAPTURE(at);
+                CAPTURE(axis);
+                PointCloud odd = sphere_cloud(100);
+                (axis == 0 ? odd.points[at].x : axis == 1 ? odd.points[at].y : odd.points[at].z) = bad;
+                CHECK_THROWS_WITH_AS(reconstruct(odd, p), doctest::Contains("non-finite"), InputError);
+            }
 }
 
 TEST_CASE("a flat cloud gives a flattened closed manifold") {
