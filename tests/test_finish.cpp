@@ -270,6 +270,65 @@ TEST_CASE("the repair's Hausdorff estimate measures every point up to 16 per ver
     CHECK(estimate_hausdorff(mesh, small_surface) > 1.5f);
 }
 
+TEST_CASE("the estimate's surface side is the true one to within an eighth of an edge, however triangulated") {
+    // A sphere scanned everywhere but a cap (around an axis through no particular vertex): the
+    // mesh spans that hole, and its largest distance to the scan lies somewhere on the triangles
+    // over it, not at a corner, an edge midpoint or a centroid.
+    const Vec3 axis = normalized(Vec3{0.31f, 0.47f, 0.83f});
+    const std::vector<Vec3> all = sphere_cloud(20000, 1.0f, {}, 3).points;
+    std::vector<Vec3> scan;
+    for (const Vec3& p : all)
+        if (dot(p, axis) <= 0.6f) scan.push_back(p);
+    Mesh mesh = Mesh::from_indexed(icosphere(2));
+    // The true largest distance from the surface to the scan, from a dense sampling of every
+    // triangle (64 x 64 sub-triangles; PointGrid's answers are those of a brute-force scan).
+    const PointGrid scan_index(scan);
+    const auto true_surface_side = [&](const Mesh& m) {
+        float worst = 0.0f;
+        for (std::uint32_t f = 0; f < m.face_capacity(); ++f) {
+            if (m.is_removed(Face(f))) continue;
+            Halfedge h = m.halfedge(Face(f));
+            const Vec3 a = m.position(m.from(h)), b = m.position(m.to(h)), c = m.position(m.to(m.next(h)));
+            for (int i = 0; i <= 64; ++i)
+                for (int j = 0; i + j <= 64; ++j) {
+                    const Vec3 q = a + (b - a) * (float(i) / 64.0f) + (c - a) * (float(j) / 64.0f);
+                    worst = std::max(worst, std::sqrt(scan_index.nearest_squared_distance(q)));
+                }
+        }
+        return worst;
+    };
+    const float truth = true_surface_side(mesh);
+    double edge_sum = 0.0;
+    for (std::uint32_t e = 0; e < mesh.edge_capacity(); ++e) {
+        const Halfedge h = Mesh::halfedge(Edge(e), 0);
+        edge_sum += distance(mesh.position(mesh.from(h)), mesh.position(mesh.to(h)));
+    }
+    const float tolerance = 0.125f * float(edge_sum / double(mesh.edge_capacity()));
+    const CloudSurface surface(scan, mesh);
+    const float before = estimate_hausdorff(mesh, surface);
+    INFO("true " << truth << ", estimated " << before << ", tolerance " << tolerance);
+    CHECK(before >= truth - tolerance);
+    CHECK(before <= truth + 1e-4f);  // a sample is never farther than the surface's farthest point
+    // Every edge over the hole split at its midpoint, twice: the same surface, finer triangles.
+    for (int pass = 0; pass < 2; ++pass) {
+        std::vector<Halfedge> over_hole;
+        for (std::uint32_t e = 0; e < mesh.edge_capacity(); ++e) {
+            const Halfedge h = Mesh::halfedge(Edge(e), 0);
+            if (!mesh.is_removed(Edge(e)) && dot(mesh.position(mesh.from(h)), axis) > 0.5f &&
+                dot(mesh.position(mesh.to(h)), axis) > 0.5f)
+                over_hole.push_back(h);
+        }
+        REQUIRE(!over_hole.empty());
+        for (const Halfedge h : over_hole) split_edge(mesh, h);
+    }
+    const CloudSurface split_surface(scan, mesh);
+    const float after = estimate_hausdorff(mesh, split_surface);
+    INFO("after the splits: estimated " << after);
+    CHECK(after >= truth - tolerance);
+    CHECK(after <= truth + 1e-4f);
+    CHECK(true_surface_side(mesh) == doctest::Approx(truth).epsilon(1e-3));
+}
+
 // ---- detection ------------------------------------------------------------------------------------
 
 TEST_CASE("self-intersections found by the grid are those of a brute-force search and of the metrics") {
