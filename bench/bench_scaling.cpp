@@ -219,7 +219,7 @@ nmesh::PointCloud upsample(const nmesh::PointCloud& base, std::uint32_t k) {
 // ---- modes -------------------------------------------------------------------------------------
 
 struct Options {
-    std::string mode;                           // output, input or loading
+    std::string mode;                           // output, input, loading or pair
     std::uint32_t vertices = 30000;             // target size (output and input)
     std::uint64_t points = 0;                   // cloud size wanted: the base upsampled ~points/base times
     int runs = 5;                               // timed runs per figure
@@ -496,11 +496,37 @@ void run_loading(const Options& o, const nmesh::PointCloud& cloud) {
     }
 }
 
+// `pair`: the input-size ratio measured run by run in one process: the base cloud and the cloud
+// upsampled to P points reconstructed alternately, R times each, to the same target (finishing
+// off). Each pair's ratio (large over small, Statistics::seconds) is taken within seconds of
+// itself, so a machine whose speed drifts from one minute to the next (as this one does) skews
+// the median ratio far less than it skews two rows timed minutes apart.
+void run_pair(const Options& o, const nmesh::PointCloud& small, const nmesh::PointCloud& large) {
+    nmesh::Parameters params;
+    params.target_vertices = o.vertices;
+    params.finish = false;
+    std::vector<double> a, b, ratio;
+    for (int r = 0; r < o.runs; ++r) {
+        a.push_back(nmesh::reconstruct(small, params).stats.seconds);
+        b.push_back(nmesh::reconstruct(large, params).stats.seconds);
+        ratio.push_back(b.back() / a.back());
+    }
+    const Summary sa = summarize(a), sb = summarize(b), sr = summarize(ratio);
+    std::printf("pair: %zu and %zu points -> %u vertices, %d alternating runs each: median %.3f s (min %.3f, max %.3f) "
+                "and %.3f s (min %.3f, max %.3f); ratio per pair median %.2f (min %.2f, max %.2f)\n",
+                small.size(), large.size(), o.vertices, o.runs, sa.median, sa.min, sa.max, sb.median, sb.min, sb.max,
+                sr.median, sr.min, sr.max);
+    append_csv(o.csv, format("%zu,%zu,%u,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f\n", small.size(), large.size(),
+                             o.vertices, o.runs, sa.median, sa.min, sa.max, sb.median, sb.min, sb.max, sr.median,
+                             sr.min, sr.max));
+}
+
 int usage(const char* argv0) {
     std::fprintf(stderr,
                  "usage: %s output|input --vertices N --points P [--runs R] [--cloud FILE] [--csv FILE] [--profile]\n"
-                 "       %s loading --points P [--runs R] [--cloud FILE] [--csv FILE]\n",
-                 argv0, argv0);
+                 "       %s loading --points P [--runs R] [--cloud FILE] [--csv FILE]\n"
+                 "       %s pair --vertices N --points P [--runs R] [--cloud FILE] [--csv FILE]\n",
+                 argv0, argv0, argv0);
     return 2;
 }
 
@@ -510,7 +536,7 @@ int main(int argc, char** argv) {
     if (argc < 2) return usage(argv[0]);
     Options o;
     o.mode = argv[1];
-    if (o.mode != "output" && o.mode != "input" && o.mode != "loading") return usage(argv[0]);
+    if (o.mode != "output" && o.mode != "input" && o.mode != "loading" && o.mode != "pair") return usage(argv[0]);
     for (int i = 2; i < argc; ++i) {
         const std::string a = argv[i];
         if (a != "--profile" && i + 1 >= argc) return usage(argv[0]);
@@ -531,6 +557,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "cloud: %s x %u = %zu points (generated in %.2f s)\n", o.cloud.c_str(), k, cloud.size(),
                      std::chrono::duration<double>(Clock::now() - t0).count());
         if (o.mode == "loading") run_loading(o, cloud);
+        else if (o.mode == "pair") run_pair(o, base, cloud);
         else run_reconstruction(o, cloud, k);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
