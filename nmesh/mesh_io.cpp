@@ -42,9 +42,23 @@ MeshFormat mesh_format(const std::string& path);
 
 }  // namespace
 
+namespace {
+
+// Whether `path` names something that exists and is neither a regular file nor a directory: a
+// device such as /dev/null or /dev/stdout, a pipe, a socket.
+bool is_special_file(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::file_status st = fs::status(path, ec);
+    return !ec && fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st);
+}
+
+}  // namespace
+
 void check_output_location(const std::string& path) {
     namespace fs = std::filesystem;
     if (path.empty()) throw IoError("(empty path): cannot write a file without a name");
+    if (is_special_file(path)) return;  // written in place: its directory is not written
     const fs::path dir = fs::path(path).parent_path();
     std::error_code ec;
     if (!dir.empty() && !fs::is_directory(dir, ec)) {
@@ -68,6 +82,20 @@ void check_mesh_output(const std::string& path) {
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& body) {
     namespace fs = std::filesystem;
     check_output_location(path);
+    if (is_special_file(path)) {
+        // A temporary renamed over a device or a pipe would replace it with a regular file
+        // (/dev/null itself): such a target is written in place.
+        std::ofstream out(path, std::ios::binary);
+        if (!out) throw IoError(path + ": cannot open for writing: " + std::strerror(errno));
+        body(out);
+        errno = 0;
+        out.flush();
+        if (!out) {
+            const std::string reason = errno != 0 ? std::strerror(errno) : "the stream reported an error";
+            throw IoError(path + ": write failed: " + reason);
+        }
+        return;
+    }
 
     const std::string temp =
         path + ".tmp-" + std::to_string(process_id()) + "-" + std::to_string(temp_counter.fetch_add(1));

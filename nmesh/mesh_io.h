@@ -21,10 +21,13 @@ namespace nmesh {
 // Throws IoError naming `path` (missing directory, cannot create, write or rename failure);
 // an exception thrown by `body` is rethrown unchanged after the clean-up.
 // The data is flushed to the operating system, not fsynced: a system crash may lose it.
+// A `path` that exists and is neither a regular file nor a directory (a device such as /dev/null
+// or /dev/stdout, a pipe) is written in place instead: a rename would replace the device itself.
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& body);
 
 // Checks, creating nothing, what write_file_atomically would refuse at once: an empty path, a
-// parent directory that is missing, not a directory or not writable, a path naming a directory.
+// parent directory that is missing, not a directory or not writable, a path naming a directory
+// (the directory is not checked for a device or a pipe, which is written in place).
 // Throws the same IoError. For callers that want to fail before long work, not after it.
 void check_output_location(const std::string& path);
 // check_output_location, and the mesh format of the extension as write_mesh requires it.

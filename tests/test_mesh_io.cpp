@@ -24,6 +24,12 @@
 #include "nmesh/point_reader.h"
 #include "io_fixtures.h"
 
+#ifndef _WIN32
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#endif
+
 using nmesh::IndexedMesh;
 using nmesh::Vec3;
 using Triangle = std::array<std::uint32_t, 3>;
@@ -483,3 +489,25 @@ TEST_CASE("write_file_atomically: a target that is a directory is refused before
     CHECK(dir.names() == std::vector<std::string>{"out.ply"});
     CHECK(fs::is_directory(dir.path / "out.ply" / "inside"));
 }
+
+#ifndef _WIN32
+TEST_CASE("write_file_atomically: a pipe or a device is written in place, not replaced by a file") {
+    // A temporary renamed over /dev/null would turn it into a regular file for the whole system;
+    // a FIFO in a scratch directory shows the same without that risk.
+    TempDir dir;
+    const std::string pipe = dir.at("pipe");
+    REQUIRE(::mkfifo(pipe.c_str(), 0600) == 0);
+    // Held open for reading and writing here, so that opening it to write does not block and
+    // what is written stays in the pipe's buffer until read back.
+    const int fd = ::open(pipe.c_str(), O_RDWR | O_NONBLOCK);
+    REQUIRE(fd >= 0);
+    CHECK_NOTHROW(nmesh::check_output_location(pipe));
+    nmesh::write_file_atomically(pipe, [](std::ostream& os) { os << "{\"a\": 1}\n"; });
+    char buf[64] = {};
+    const ssize_t got = ::read(fd, buf, sizeof buf - 1);
+    ::close(fd);
+    CHECK(std::string(buf, got > 0 ? std::size_t(got) : 0) == "{\"a\": 1}\n");
+    CHECK(fs::is_fifo(fs::status(pipe)));
+    CHECK(dir.names() == std::vector<std::string>{"pipe"});  // no temporary left beside it
+}
+#endif
