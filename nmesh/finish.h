@@ -26,9 +26,11 @@
 // Each pass is O(n) for a mesh of n vertices (the repair is local to the defects), whatever the
 // size of the cloud: a cloud larger than the mesh is read in full only by is_flat() and by the
 // nearest-point index (see CloudSurface and estimate_hausdorff for how the rest follows the
-// mesh). About 0.33 s for the 30,000-vertex bunny, against 1.3 s of learning; 2.1 s for 30,000
-// vertices from 36 million points on a sphere (26 s when every point had its own normal and its
-// own term in the repair's estimate).
+// mesh), and reconstruct() gives it no more than 64 points per vertex (the stratified sample of
+// nmesh/cloud_sample.h, with the engine's index over it). About 0.30 s for the 30,000-vertex
+// bunny, against 1.3 s of learning; 0.55 s for 30,000 vertices from 36 million points on a
+// sphere through reconstruct() (26 s when every point had its own normal and its own term in
+// the repair's estimate, 2.1 s when the stage still worked on every point).
 #pragma once
 
 #include <cstddef>

@@ -1,7 +1,8 @@
 // nmesh/neural_mesh.h — the learning engine: the Neural Meshes algorithm (steps 1-9 of section 3
 // of the Neural Meshes ES paper) and the edge swap of section 4, on the parts built for it:
 // the half-edge Mesh, the VertexGrid (winner search), the ActivityIndex (signal counters), the
-// RingCache (the one-rings the smoothing reads) and, for the edge swap, a PointGrid over the cloud.
+// RingCache (the one-rings the smoothing reads) and, for the edge swap, a PointGrid over the cloud
+// (or over its sample, Parameters::index_points_per_vertex).
 //
 // Most callers want reconstruct() (nmesh/reconstruct.h), which normalises the cloud, runs this
 // engine and maps the mesh back. The engine is public so tests can drive it step by step.
@@ -60,8 +61,9 @@ public:
     // destroyed (which frees its grid, activity index, ring cache and cloud index before the
     // caller builds more from the mesh).
     Mesh take_mesh() { return std::move(mesh_); }
-    // Moves the nearest-point index over the (transformed) cloud out, or null when the engine has
-    // none (it builds one only for the edge swap); the same conditions as take_mesh().
+    // Moves the nearest-point index over the (transformed) cloud or its sample out (index_cloud),
+    // or null when the engine has none (it builds one only for the edge swap); the same
+    // conditions as take_mesh().
     std::unique_ptr<PointGrid> take_cloud_index() { return std::move(cloud_index_); }
     const VertexGrid& grid() const { return grid_; }
     const ActivityIndex& activity() const { return activity_; }
