@@ -54,8 +54,8 @@ struct Parameters {
     // learnt meshes are as close to the cloud with 16 points per vertex as with all of them; the
     // finishing stage, which pulls each vertex towards the plane of its nearest indexed point,
     // leaves them farther with fewer points: mean point-to-surface distance +0.6% at 64 (five
-    // seeds), +1.9% at 32, +3% at 16, +6.5% at 4, against the whole cloud; DM(X,T) within 0.1%
-    // at 64. The bunny itself (35,947 points for 30,000 vertices) is indexed whole.
+    // seeds), +1.9% at 32, +3% at 16, +6.5% at 4, against the whole cloud; DM(X,T) +0.13% at
+    // 64. The bunny itself (35,947 points for 30,000 vertices) is indexed whole.
     std::uint32_t index_points_per_vertex = 64;
 
     // Throws ParameterError naming the first parameter out of range.
