@@ -41,6 +41,13 @@ std::vector<Face> alive_faces(const Mesh& mesh) {
     return f;
 }
 
+// A nearest-point index over the positions of `verts`: index i names verts[i].
+std::unique_ptr<PointGrid> position_index(const Mesh& mesh, const std::vector<Vertex>& verts) {
+    std::vector<Vec3> pos(verts.size());
+    for (std::size_t i = 0; i < verts.size(); ++i) pos[i] = mesh.position(verts[i]);
+    return std::make_unique<PointGrid>(pos);
+}
+
 std::array<Vertex, 3> corners(const Mesh& mesh, Face f) {
     const Halfedge h = mesh.halfedge(f);
     return {mesh.from(h), mesh.to(h), mesh.to(mesh.next(h))};
@@ -175,27 +182,20 @@ public:
     HausdorffEstimate(const Mesh& mesh, const CloudSurface& cloud, float mean_edge)
         : cloud_(cloud), tolerance_(kSurfaceTolerance * mean_edge) {
         const std::vector<Vertex> verts = alive_vertices(mesh);
-        std::vector<Vec3> pos(verts.size());
-        for (std::size_t i = 0; i < verts.size(); ++i) pos[i] = mesh.position(verts[i]);
-        const PointGrid index(pos);
+        const std::unique_ptr<PointGrid> index = position_index(mesh, verts);
         const std::vector<Vec3>& points = cloud.points();
         const std::size_t most = kPointsPerVertex * std::max<std::size_t>(verts.size(), 1);
         stride_ = std::max<std::size_t>(1, (points.size() + most - 1) / most);
         nearest_.reserve(points.size() / stride_ + 1);
         for (std::size_t i = 0; i < points.size(); i += stride_) {
-            const Vertex v = verts[index.nearest(points[i])];
+            const Vertex v = verts[index->nearest(points[i])];
             nearest_.push_back(v.idx);
             value_ = std::max(value_, distance_to_ring(mesh, v, points[i]));
         }
         // Each vertex's distance once, rather than once per triangle round it.
         std::vector<float> at_vertex(mesh.vertex_capacity(), 0.0f);
-        for (const Vertex v : verts) value_ = std::max(value_, at_vertex[v.idx] = to_cloud(mesh.position(v)));
-        for (std::uint32_t f = 0; f < mesh.face_capacity(); ++f) {
-            if (mesh.is_removed(Face(f))) continue;
-            const auto c = corners(mesh, Face(f));
-            const float d[3] = {at_vertex[c[0].idx], at_vertex[c[1].idx], at_vertex[c[2].idx]};
-            value_ = sample_if_farther(mesh, c, d, value_);
-        }
+        for (const Vertex v : verts) at_vertex[v.idx] = to_cloud(mesh.position(v));
+        value_ = surface_side(mesh, alive_faces(mesh), value_, &at_vertex);
     }
 
     float value() const { return value_; }
@@ -209,12 +209,10 @@ public:
                 for (const Vertex v : corners(mesh, f)) affected[v.idx] = 1;
         float value = surface_side(mesh, changed, value_);
         const std::vector<Vertex> verts = alive_vertices(mesh);
-        std::vector<Vec3> pos(verts.size());
-        for (std::size_t i = 0; i < verts.size(); ++i) pos[i] = mesh.position(verts[i]);
-        const PointGrid index(pos);
+        const std::unique_ptr<PointGrid> index = position_index(mesh, verts);
         const std::vector<Vec3>& points = cloud_.points();
         for (std::size_t i = 0, k = 0; i < points.size(); i += stride_, ++k) {
-            const Vertex v = verts[index.nearest(points[i])];
+            const Vertex v = verts[index->nearest(points[i])];
             // Unchanged: the same nearest vertex, with the same triangles around it.
             if (v.idx == nearest_[k] && !affected[v.idx]) continue;
             value = std::max(value, distance_to_ring(mesh, v, points[i]));
@@ -235,12 +233,15 @@ private:
     // long edge at its midpoint, which leaves the surface as it was, used to raise the old figure
     // by finding a farther point on a triangle over a hole, and so to undo a repair that had
     // removed every defect (the bunny, 30,000 vertices, seed 9: 210 intersecting pairs kept).
-    float surface_side(const Mesh& mesh, const std::vector<Face>& faces, float value) const {
+    // `at_vertex`: the vertices' distances to the cloud, by vertex id, when already known.
+    float surface_side(const Mesh& mesh, const std::vector<Face>& faces, float value,
+                       const std::vector<float>* at_vertex = nullptr) const {
         for (const Face f : faces) {
             if (mesh.is_removed(f)) continue;
-            const auto c = corners(mesh, f);
+            const std::array<Vertex, 3> c = corners(mesh, f);
             float d[3];
-            for (int k = 0; k < 3; ++k) value = std::max(value, d[k] = to_cloud(mesh.position(c[k])));
+            for (int k = 0; k < 3; ++k)
+                value = std::max(value, d[k] = at_vertex ? (*at_vertex)[c[k].idx] : to_cloud(mesh.position(c[k])));
             value = sample_if_farther(mesh, c, d, value);
         }
         return value;
@@ -250,8 +251,7 @@ private:
     // bound does not exceed `value` is passed over; any other is cut into four at its edges'
     // midpoints (which are measured), down to triangles whose edges are at most tolerance_
     // (every point of those lies within tolerance_ of a measured corner).
-    template <class Corners>
-    float sample_if_farther(const Mesh& mesh, const Corners& c, const float (&d)[3], float value) const {
+    float sample_if_farther(const Mesh& mesh, const std::array<Vertex, 3>& c, const float (&d)[3], float value) const {
         struct Piece {
             Vec3 p[3];
             float d[3];
@@ -683,13 +683,9 @@ CloudSurface::CloudSurface(const std::vector<Vec3>& points, const Mesh& mesh, co
       own_index_(index ? nullptr : std::make_unique<PointGrid>(points)),
       index_(index ? index : own_index_.get()) {
     const std::vector<Vertex> verts = alive_vertices(mesh);
-    std::vector<Vec3> pos(verts.size());
     vertex_normals_.resize(verts.size());
-    for (std::size_t i = 0; i < verts.size(); ++i) {
-        pos[i] = mesh.position(verts[i]);
-        vertex_normals_[i] = mesh.vertex_normal(verts[i]);
-    }
-    vertex_index_ = std::make_unique<PointGrid>(pos);
+    for (std::size_t i = 0; i < verts.size(); ++i) vertex_normals_[i] = mesh.vertex_normal(verts[i]);
+    vertex_index_ = position_index(mesh, verts);
     if (points.size() <= kStoredNormalsPerVertex * verts.size()) {
         point_normals_.resize(points.size());
         for (std::size_t i = 0; i < points.size(); ++i) point_normals_[i] = vertex_normals_[vertex_index_->nearest(points[i])];

@@ -161,8 +161,8 @@ void relax_tangentially(Mesh& mesh, const CloudSurface* cloud = nullptr);
 
 // The Hausdorff distance between `mesh` and the cloud of `surface` as the repair estimates it, to
 // refuse a repair that would move the surface away from the cloud: the larger of (a) the distance
-// from each measured cloud point to the triangles around its nearest vertex and (b) the distance
-// to the cloud from every vertex, edge midpoint and triangle centroid. Every cloud point is
+// from each measured cloud point to the triangles around its nearest vertex and (b) the surface's
+// largest distance to the cloud, measured to within an eighth of the mean edge length. Every cloud point is
 // measured up to 16 points per mesh vertex; beyond, every s-th point, s the smallest stride that
 // leaves at most 16 per vertex, so that the cost follows the mesh. O(m) for m vertices.
 float estimate_hausdorff(const Mesh& mesh, const CloudSurface& surface);

@@ -40,10 +40,6 @@ std::atomic<unsigned long> temp_counter{0};
 enum class MeshFormat { ply, obj, off };
 MeshFormat mesh_format(const std::string& path);
 
-}  // namespace
-
-namespace {
-
 // Whether `path` names something that exists and is neither a regular file nor a directory: a
 // device such as /dev/null or /dev/stdout, a pipe, a socket.
 bool is_special_file(const std::string& path) {
@@ -51,6 +47,15 @@ bool is_special_file(const std::string& path) {
     std::error_code ec;
     const fs::file_status st = fs::status(path, ec);
     return !ec && fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st);
+}
+
+// Flushes and closes `out`; an empty string when every write succeeded, else why not.
+std::string close_stream(std::ofstream& out) {
+    errno = 0;
+    out.flush();
+    if (out) out.close();
+    if (!out.fail()) return {};
+    return errno != 0 ? std::strerror(errno) : "the stream reported an error";
 }
 
 }  // namespace
@@ -88,12 +93,8 @@ void write_file_atomically(const std::string& path, const std::function<void(std
         std::ofstream out(path, std::ios::binary);
         if (!out) throw IoError(path + ": cannot open for writing: " + std::strerror(errno));
         body(out);
-        errno = 0;
-        out.flush();
-        if (!out) {
-            const std::string reason = errno != 0 ? std::strerror(errno) : "the stream reported an error";
-            throw IoError(path + ": write failed: " + reason);
-        }
+        const std::string failure = close_stream(out);
+        if (!failure.empty()) throw IoError(path + ": write failed: " + failure);
         return;
     }
 
@@ -112,13 +113,10 @@ void write_file_atomically(const std::string& path, const std::function<void(std
         discard();
         throw;
     }
-    errno = 0;
-    out.flush();
-    if (out) out.close();
-    if (out.fail()) {
-        const std::string reason = errno != 0 ? std::strerror(errno) : "the stream reported an error";
+    const std::string failure = close_stream(out);
+    if (!failure.empty()) {
         discard();
-        throw IoError(path + ": write failed: " + reason);
+        throw IoError(path + ": write failed: " + failure);
     }
     std::error_code ec;
     fs::rename(temp, path, ec);

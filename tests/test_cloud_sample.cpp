@@ -37,12 +37,6 @@ std::vector<std::size_t> indices_of(const std::vector<Vec3>& sample) {
     return idx;
 }
 
-BoundingBox box_of(const std::vector<Vec3>& points, const PointTransform& t) {
-    BoundingBox b;
-    for (const Vec3& p : points) b.extend(t(p));
-    return b;
-}
-
 }  // namespace
 
 TEST_CASE("a stratified sample takes one point from each run of consecutive indices, in order") {
@@ -98,9 +92,9 @@ TEST_CASE("the index holds the whole cloud up to the budget of points per vertex
     PointTransform t;
     t.center = {1.0f, 2.0f, 3.0f};
     t.scale = 0.25f;
-    const BoundingBox box = box_of(cloud.points, t);
     std::vector<Vec3> transformed;
     for (const Vec3& q : cloud.points) transformed.push_back(t(q));
+    const BoundingBox box = nmesh::bounding_box(transformed);
 
     p = Parameters{};
     p.target_vertices = 100;  // 6,400 points allowed: the whole cloud, in its order
