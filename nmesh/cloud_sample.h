@@ -2,7 +2,7 @@
 //
 // The edge swap's deviation (eq. 9 of the paper: the distance from a triangle's centroid to the
 // nearest cloud point) and the finishing stage need a nearest-point index over the cloud. Its
-// build reads every point (2.4 s and 18 bytes per point for 36 million points), while the mesh
+// build reads every point (2.0 s and 18 bytes per point for 36 million points), while the mesh
 // only needs the cloud as densely as its own triangles. reconstruct() therefore indexes a sample
 // of at most Parameters::index_points_per_vertex points per target vertex (see there for the
 // choice), drawn here.

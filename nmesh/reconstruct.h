@@ -48,7 +48,7 @@ struct Parameters {
     // behind the finishing stage holds at most this many cloud points per target vertex: all of a
     // cloud up to that size, otherwise a stratified sample of it (nmesh/cloud_sample.h), so that
     // its cost follows the mesh, not the cloud (36 million points: 1 byte per point instead of
-    // 18, 0.24 s of setup instead of 2.4 s). The learning still draws its samples (step 1) from
+    // 18, 0.25 s of setup instead of 2.0 s). The learning still draws its samples (step 1) from
     // the whole cloud, and the metrics measure against the whole cloud. 0 indexes every point.
     // Choice: 64. The bunny with 100 points per scan point (3.6 million) to 30,000 vertices: the
     // learnt meshes are as close to the cloud with 16 points per vertex as with all of them; the
