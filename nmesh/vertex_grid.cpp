@@ -84,7 +84,6 @@ void VertexGrid::reserve(std::size_t n) {
     const std::size_t blocks = n / 2 + 16;  // surface data needs about n / 3 (chains 3/4 full)
     blocks_.reserve(blocks);
     block_next_.reserve(blocks);
-    scratch_.reserve(n);
     std::size_t cap = 16;
     while (cap < 2 * std::size_t(double(n) / kVerticesPerCell) + 2) cap *= 2;
     table_.reserve(cap);
@@ -123,18 +122,13 @@ void VertexGrid::reset_table(std::size_t expected_cells) {
 // few vertices, so the size is refined at every doubling. The measurement also adapts to sets
 // that are not surfaces (on a curve or in a volume the correction over- or under-shoots, and the
 // next rebuilds converge).
+//
+// The vertices are re-bucketed in place, without a copy of them: pack_entries() moves them to
+// the front of the block array, then reinsert() puts them into the new cells, reading the packed
+// blocks in order and handing each one to the allocator once it is read. A copy (16 bytes per
+// vertex) was the largest piece of the grid's memory after its cells.
 void VertexGrid::rebuild() {
     const std::size_t n = size_;
-    scratch_.clear();
-    for (const Cell& cell : table_) {
-        if (cell.key == kEmptyKey) continue;
-        std::uint32_t fill = (cell.count - 1) % kBlockEntries + 1;
-        for (std::uint32_t b = cell.head; b != kNone; b = block_next_[b], fill = kBlockEntries)
-            for (std::uint32_t k = 0; k < fill; ++k)
-                scratch_.push_back(Entry{entry_position(b * kBlockEntries + k), blocks_[b].id[k]});
-    }
-    assert(scratch_.size() == n);
-
     // Up to kMaxRefinements passes, while the occupancy is more than a factor kRefineRatio off.
     for (int pass = 0; pass < kMaxRefinements; ++pass) {
         const double per_cell = double(n) / double(occupied_cells_);
@@ -144,15 +138,59 @@ void VertexGrid::rebuild() {
         const double old_size = cell_size_;
         set_cell_size(cell_size_ * std::sqrt(kVerticesPerCell / per_cell));
         if (pass > 0 && cell_size_ == old_size) break;  // clamped: nothing to refine
+        pack_entries();
         reset_table(std::size_t(double(n) / kVerticesPerCell) + 1);
-        blocks_.clear();
-        block_next_.clear();
-        free_blocks_ = kNone;
-        for (const Entry& e : scratch_) add_to_cell(e.id, e.position, cell_key(e.position));
+        reinsert(n);
     }
     size_at_rebuild_ = n;
     cell_changes_ = 0;
     ++rebuild_count_;
+}
+
+// Moves the size_ entries to entries [0, size_), block by block in index order, and leaves the
+// cells and the free list undefined (the caller resets them). Each block's count of entries in use
+// is first written over its link (block_next_): 0 for the free blocks, the cell's fill for a head
+// block, kBlockEntries for the others. Entry i is then written only after every entry at or below
+// i has been read, so the packing overwrites nothing it still needs. O(blocks).
+void VertexGrid::pack_entries() {
+    for (std::uint32_t b = free_blocks_; b != kNone;) {
+        const std::uint32_t next = block_next_[b];
+        block_next_[b] = 0;
+        b = next;
+    }
+    for (const Cell& cell : table_) {
+        if (cell.key == kEmptyKey) continue;
+        std::uint32_t fill = (cell.count - 1) % kBlockEntries + 1;
+        for (std::uint32_t b = cell.head; b != kNone; fill = kBlockEntries) {
+            const std::uint32_t next = block_next_[b];
+            block_next_[b] = fill;
+            b = next;
+        }
+    }
+    std::uint32_t out = 0;
+    for (std::uint32_t b = 0; b < std::uint32_t(blocks_.size()); ++b)
+        for (std::uint32_t k = 0; k < block_next_[b]; ++k, ++out) {
+            const std::uint32_t e = b * kBlockEntries + k;
+            if (out != e) set_entry(out, entry_position(e), entry_id(e));
+        }
+    assert(out == size_);
+    free_blocks_ = kNone;
+}
+
+// Adds the n packed entries [0, n) to the (empty) cell table under the current cell size. Packed
+// block j is put on the free list once its last entry has been read, so the new chains reuse the
+// packed blocks as they are read; the block array grows only by the difference (new chains are
+// about 3/4 full, the packed blocks full).
+void VertexGrid::reinsert(std::size_t n) {
+    const std::uint32_t packed_blocks = std::uint32_t((n + kBlockEntries - 1) / kBlockEntries);
+    blocks_.resize(packed_blocks);
+    block_next_.resize(packed_blocks);
+    for (std::uint32_t i = 0; i < std::uint32_t(n); ++i) {
+        const Vec3 p = entry_position(i);
+        const std::uint32_t id = entry_id(i);
+        if (i % kBlockEntries == kBlockEntries - 1 || i + 1 == n) free_block(i / kBlockEntries);
+        add_to_cell(id, p, cell_key(p));
+    }
 }
 
 // --- updates -------------------------------------------------------------------------------
@@ -204,7 +242,7 @@ void VertexGrid::add_to_cell(std::uint32_t id, const Vec3& p, std::uint64_t key)
 // block when it empties, so a cell's entries stay packed.
 void VertexGrid::remove_from_cell(std::uint32_t id) {
     Slot& slot = slots_[id];
-    const std::uint32_t s = find_cell(slot.key);
+    const std::uint32_t s = find_cell(slot.key());
     assert(s != kNone);
     Cell& cell = table_[s];
     const std::uint32_t last_lane = (cell.count - 1) % kBlockEntries;

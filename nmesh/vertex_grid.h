@@ -73,7 +73,7 @@ public:
     void move(std::uint32_t id, const Vec3& p) {
         Slot& slot = slots_[id];
         const std::uint64_t key = cell_key(p);
-        if (key == slot.key) {
+        if (key == slot.key()) {
             set_entry_position(slot.entry, p);
             return;
         }
@@ -138,10 +138,6 @@ private:
     static constexpr std::uint64_t kEmptyKey = ~std::uint64_t(0);  // not a valid packed key
     static constexpr std::uint32_t kBlockEntries = 4;              // 4 x 16 bytes: one cache line
 
-    struct Entry {
-        Vec3 position;
-        std::uint32_t id;
-    };
     // kBlockEntries entries, lane by lane; the lanes past a cell's count hold stale values.
     struct alignas(64) Block {
         float x[kBlockEntries], y[kBlockEntries], z[kBlockEntries];
@@ -156,10 +152,16 @@ private:
         std::uint32_t count;
     };
     // Per vertex id: its cell key and its entry (block * kBlockEntries + lane), kNone when absent.
+    // The key is kept as two 32-bit halves so that a slot takes 12 bytes, not 16 (a uint64
+    // member would pad it to its 8-byte alignment): 4 bytes less per vertex.
     struct Slot {
-        std::uint64_t key = kEmptyKey;
+        std::uint32_t key_lo = std::uint32_t(kEmptyKey), key_hi = std::uint32_t(kEmptyKey >> 32);
         std::uint32_t entry = kNone;
+        Slot() = default;
+        Slot(std::uint64_t key, std::uint32_t e) : key_lo(std::uint32_t(key)), key_hi(std::uint32_t(key >> 32)), entry(e) {}
+        std::uint64_t key() const { return std::uint64_t(key_hi) << 32 | key_lo; }
     };
+    static_assert(sizeof(Slot) == 12, "a slot is three 32-bit words");
     // Bounding box of the cell coordinates occupied since the last rebuild (a superset of the
     // occupied cells, which lets queries skip empty space outside it).
     struct IndexBox {
@@ -223,6 +225,8 @@ private:
     void add_to_cell(std::uint32_t id, const Vec3& p, std::uint64_t key);
     void remove_from_cell(std::uint32_t id);
     void rebuild();
+    void pack_entries();
+    void reinsert(std::size_t n);
     void set_cell_size(double h);
     void reset_table(std::size_t expected_cells);
 
@@ -268,7 +272,6 @@ private:
     std::size_t size_at_rebuild_ = 0;
     std::size_t cell_changes_ = 0;  // moves to another cell since the last rebuild
     std::size_t rebuild_count_ = 0;
-    std::vector<Entry> scratch_;  // the vertices during a rebuild (kept to avoid reallocation)
 };
 
 }  // namespace nmesh
