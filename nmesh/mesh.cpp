@@ -49,6 +49,12 @@ Mesh Mesh::tetrahedron(const Vec3& a, const Vec3& b_in, const Vec3& c_in, const 
 }
 
 Mesh Mesh::from_indexed(const IndexedMesh& in) {
+    // The limit before anything is built: a closed genus-0 mesh of T triangles has 3T half-edges
+    // and T / 2 + 2 vertices, so a valid input within the limit has at most kMaxVertices.
+    check_halfedge_count(3 * std::uint64_t(in.triangles.size()), "from_indexed");
+    if (in.positions.size() > kMaxVertices)
+        throw InputError("mesh: from_indexed: " + std::to_string(in.positions.size()) + " vertices; a mesh holds at most " +
+                         std::to_string(kMaxVertices) + " (2^31 half-edges)");
     const std::uint32_t nv = std::uint32_t(in.positions.size());
     Mesh m;
     m.reserve(nv);
@@ -107,84 +113,87 @@ Mesh Mesh::from_indexed(const IndexedMesh& in) {
 }
 
 void Mesh::reserve(std::uint32_t n) {
+    if (n > kMaxVertices)
+        throw ParameterError("mesh: reserve: n = " + std::to_string(n) + " vertices; a mesh holds at most " +
+                             std::to_string(kMaxVertices) + " (2^31 half-edges)");
     vpos_.reserve(n);
     vhe_.reserve(n);
-    vremoved_.reserve(n);
-    const std::size_t ne = std::size_t(n) * 3, nh = ne * 2, nf = std::size_t(n) * 2;
+    const std::size_t nh = std::size_t(n) * 6, nf = std::size_t(n) * 2;
     he_.reserve(nh);
     he_face_.reserve(nh);
-    eremoved_.reserve(ne);
     fhe_.reserve(nf);
-    fremoved_.reserve(nf);
+}
+
+void Mesh::throw_too_many_halfedges(std::uint64_t halfedges, const char* what) {
+    throw InputError(std::string("mesh: ") + what + ": " + std::to_string(halfedges) + " half-edges; a mesh holds at most 2^31 (" +
+                     std::to_string(kMaxVertices) + " vertices)");
 }
 
 // ---- slots and free lists -----------------------------------------------------------------------
+// A head and the links it leads to are all marked (slot | kFreeBit), so a pop is a mask and a
+// load, a push two stores and an or, with no branch on the list's end: kInvalidIndex has the bit.
 
 Vertex Mesh::new_vertex(const Vec3& p) {
     ++n_vertices_;
     if (vfree_ != kInvalidIndex) {
-        const std::uint32_t v = vfree_;
+        const std::uint32_t v = vfree_ & ~kFreeBit;
         vfree_ = vhe_[v];
-        vremoved_[v] = 0;
         vpos_[v] = p;
         vhe_[v] = kInvalidIndex;
         return Vertex(v);
     }
     vpos_.push_back(p);
     vhe_.push_back(kInvalidIndex);
-    vremoved_.push_back(0);
     return Vertex(std::uint32_t(vpos_.size() - 1));
 }
 
 Face Mesh::new_face() {
     ++n_faces_;
     if (ffree_ != kInvalidIndex) {
-        const std::uint32_t f = ffree_;
+        const std::uint32_t f = ffree_ & ~kFreeBit;
         ffree_ = fhe_[f];
-        fremoved_[f] = 0;
         fhe_[f] = kInvalidIndex;
         return Face(f);
     }
     fhe_.push_back(kInvalidIndex);
-    fremoved_.push_back(0);
     return Face(std::uint32_t(fhe_.size() - 1));
 }
 
 Edge Mesh::new_edge() {
     ++n_edges_;
     if (efree_ != kInvalidIndex) {
-        const std::uint32_t e = efree_;
+        const std::uint32_t e = efree_ & ~kFreeBit;
         efree_ = he_[2 * e].next;
-        eremoved_[e] = 0;
         return Edge(e);
     }
+    // The callers that can grow the mesh (split, from_indexed) checked the limit before
+    // changing anything, so that a refusal leaves the mesh as it was.
+    assert(he_.size() + 2 <= kMaxHalfedges);
     for (int i = 0; i < 2; ++i) {
         he_.push_back({kInvalidIndex, kInvalidIndex});
         he_face_.push_back(kInvalidIndex);
     }
-    eremoved_.push_back(0);
-    return Edge(std::uint32_t(eremoved_.size() - 1));
+    return Edge(std::uint32_t(he_.size() / 2 - 1));
 }
 
 void Mesh::delete_vertex(Vertex v) {
     --n_vertices_;
-    vremoved_[v.idx] = 1;
     vhe_[v.idx] = vfree_;
-    vfree_ = v.idx;
+    vfree_ = v.idx | kFreeBit;
 }
 
 void Mesh::delete_face(Face f) {
     --n_faces_;
-    fremoved_[f.idx] = 1;
     fhe_[f.idx] = ffree_;
-    ffree_ = f.idx;
+    ffree_ = f.idx | kFreeBit;
 }
 
 void Mesh::delete_edge(Edge e) {
     --n_edges_;
-    eremoved_[e.idx] = 1;
+    // Only the first half-edge's next carries the mark; the pair's other fields keep stale
+    // values nobody reads (every reader asks is_removed first).
     he_[2 * e.idx].next = efree_;
-    efree_ = e.idx;
+    efree_ = e.idx | kFreeBit;
 }
 
 void Mesh::link_face(Face f, Halfedge h0, Halfedge h1, Halfedge h2) {
@@ -263,6 +272,11 @@ bool Mesh::can_split(Halfedge to_c, Halfedge to_d) const {
 
 Vertex Mesh::split(Halfedge to_c, Halfedge to_d, const Vec3& p) {
     assert(can_split(to_c, to_d));
+    // The only operation that grows the mesh; the limit is checked before anything changes. The
+    // arrays grow only when every slot is in use, so the edge slots after the split number the
+    // larger of those before (within the limit) and the alive edges after it: the test on the
+    // alive count is exact. One load, a compare with a constant and a branch never taken.
+    if (n_edges_ > kMaxHalfedges / 2 - 3) throw_too_many_halfedges(2 * (std::uint64_t(n_edges_) + 3), "split");
     const Vertex b = from(to_c);
     const Vertex c = to(to_c), d = to(to_d);
 
@@ -423,13 +437,13 @@ IndexedMesh Mesh::to_indexed(std::vector<std::uint32_t>* vertex_map) const {
     map.assign(vertex_capacity(), kInvalidIndex);
     out.positions.reserve(n_vertices_);
     for (std::uint32_t v = 0; v < vertex_capacity(); ++v) {
-        if (vremoved_[v]) continue;
+        if (is_removed(Vertex(v))) continue;
         map[v] = std::uint32_t(out.positions.size());
         out.positions.push_back(vpos_[v]);
     }
     out.triangles.reserve(n_faces_);
     for (std::uint32_t f = 0; f < face_capacity(); ++f) {
-        if (fremoved_[f]) continue;
+        if (is_removed(Face(f))) continue;
         const Halfedge h = halfedge(Face(f));
         out.triangles.push_back({map[from(h).idx], map[to(h).idx], map[to(next(h)).idx]});
     }
@@ -437,8 +451,8 @@ IndexedMesh Mesh::to_indexed(std::vector<std::uint32_t>* vertex_map) const {
 }
 
 bool Mesh::same_arrays(const Mesh& o) const {
-    return vhe_ == o.vhe_ && vremoved_ == o.vremoved_ && he_ == o.he_ && he_face_ == o.he_face_ && eremoved_ == o.eremoved_ &&
-           fhe_ == o.fhe_ && fremoved_ == o.fremoved_ && vfree_ == o.vfree_ &&
+    // The dead marks and free lists live in vhe_, he_ and fhe_ and the heads.
+    return vhe_ == o.vhe_ && he_ == o.he_ && he_face_ == o.he_face_ && fhe_ == o.fhe_ && vfree_ == o.vfree_ &&
            ffree_ == o.ffree_ && efree_ == o.efree_ && n_vertices_ == o.n_vertices_ &&
            n_faces_ == o.n_faces_ && n_edges_ == o.n_edges_ && vpos_.size() == o.vpos_.size() &&
            std::equal(vpos_.begin(), vpos_.end(), o.vpos_.begin(),

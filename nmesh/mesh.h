@@ -5,9 +5,22 @@
 //   - per half-edge: the vertex it points to, the next half-edge in its face, its face;
 //   - per vertex: position and one outgoing half-edge; per face: one half-edge;
 //   - a dead slot's own connectivity field (vertex -> outgoing half-edge, face -> half-edge,
-//     edge -> next of its first half-edge) holds the next free slot: a free list at no memory cost.
-//     Creation pops the free list in O(1); a `removed` flag tells dead from alive for asserts and
-//     iteration.
+//     edge -> next of its first half-edge) holds the next free slot with the top bit set
+//     (slot | kFreeBit; the list's end, kInvalidIndex, has it set too): a free list and a dead
+//     mark at no memory cost. An alive slot's field holds a half-edge index, below 2^31, so the
+//     bit tells dead from alive: is_removed() loads the word the connectivity itself lives in,
+//     and no separate flag arrays (6 bytes per vertex: 1 per vertex, 3 per vertex for its ~3
+//     edges, 2 for its ~2 faces) are stored or written. The heads are kept in the same form, so
+//     deleting stores the head into the slot and creation pops it with one mask, in O(1), last
+//     freed first. A slot just created reads as removed until the operation links it.
+//   - about 96 bytes per vertex in all (12 position, 4 outgoing half-edge, 6 x 12 half-edge
+//     links and face, 2 x 4 face half-edge).
+//
+// Size limit: alive fields must stay below the bit, so a mesh holds at most 2^31 half-edges
+// (kMaxHalfedges), about 358 million vertices (kMaxVertices; a closed genus-0 mesh of V vertices
+// has 6V - 12 half-edges). from_indexed, reserve and split throw before going past it. Vertex
+// and face slots, fewer than half-edges, stay far below 2^31 - 1 too, so a marked free slot
+// never reads as the list's end.
 //
 // The mesh core knows topology only. Each topology operation has a named predicate
 // (can_split, can_collapse, can_flip) and asserts it; the learning algorithm adds its own rules on
@@ -77,12 +90,24 @@ public:
     std::uint32_t edge_capacity() const { return std::uint32_t(he_.size() / 2); }
     std::uint32_t halfedge_capacity() const { return std::uint32_t(he_.size()); }
     // Reserve room for n vertices (and the ~2n faces and ~3n edges that come with them).
+    // Throws ParameterError when n > kMaxVertices.
     void reserve(std::uint32_t n);
 
-    bool is_removed(Vertex v) const { return vremoved_[v.idx] != 0; }
-    bool is_removed(Face f) const { return fremoved_[f.idx] != 0; }
-    bool is_removed(Edge e) const { return eremoved_[e.idx] != 0; }
-    bool is_removed(Halfedge h) const { return eremoved_[h.idx >> 1] != 0; }
+    // The size limit (see the top of this file): every half-edge index stays below 2^31.
+    static constexpr std::uint32_t kMaxHalfedges = std::uint32_t(1) << 31;
+    static constexpr std::uint32_t kMaxVertices = (kMaxHalfedges + 12) / 6;  // 357,913,943
+    // Throws InputError, naming `what`, when `halfedges` half-edges would not fit. from_indexed
+    // checks through it, split makes the same test on its alive edge count, both before changing
+    // anything.
+    static void check_halfedge_count(std::uint64_t halfedges, const char* what) {
+        if (halfedges > kMaxHalfedges) throw_too_many_halfedges(halfedges, what);
+    }
+
+    // Dead or alive: the top bit of the slot's own connectivity field (one load and a mask).
+    bool is_removed(Vertex v) const { return (vhe_[v.idx] & kFreeBit) != 0; }
+    bool is_removed(Face f) const { return (fhe_[f.idx] & kFreeBit) != 0; }
+    bool is_removed(Edge e) const { return (he_[2 * e.idx].next & kFreeBit) != 0; }
+    bool is_removed(Halfedge h) const { return (he_[h.idx & ~1u].next & kFreeBit) != 0; }
 
     // ---- connectivity -----------------------------------------------------------------------
     Vertex to(Halfedge h) const { return Vertex(he_[h.idx].to); }
@@ -144,6 +169,7 @@ public:
     // `to_d`, both included, move to a new vertex a at position p; the new faces (a, b, c) and
     // (b, a, d) close the gap. a gets valence k+1 (k = moved half-edges, 2 <= k <= valence(b)),
     // b ends with valence(b) - k + 3, c and d gain one. Returns a. Inverse: collapse(a -> b).
+    // Throws InputError, the mesh unchanged, when the new edges would pass kMaxHalfedges.
     bool can_split(Halfedge to_c, Halfedge to_d) const;
     Vertex split(Halfedge to_c, Halfedge to_d, const Vec3& p);
 
@@ -186,18 +212,29 @@ public:
     // Raw access for the validator and for bit-for-bit comparisons in tests.
     bool same_arrays(const Mesh& o) const;
 
-    // Free-list heads (kInvalidIndex when empty); for the validator.
-    std::uint32_t free_vertex_head() const { return vfree_; }
-    std::uint32_t free_face_head() const { return ffree_; }
-    std::uint32_t free_edge_head() const { return efree_; }
-    // The next slot after a free one (its connectivity field holds it).
-    std::uint32_t next_free_vertex(std::uint32_t v) const { return vhe_[v]; }
-    std::uint32_t next_free_face(std::uint32_t f) const { return fhe_[f]; }
-    std::uint32_t next_free_edge(std::uint32_t e) const { return he_[2 * e].next; }
+    // Free-list heads (kInvalidIndex when empty); for the validator. Plain slot indices: the
+    // dead mark is taken off.
+    std::uint32_t free_vertex_head() const { return plain(vfree_); }
+    std::uint32_t free_face_head() const { return plain(ffree_); }
+    std::uint32_t free_edge_head() const { return plain(efree_); }
+    // The next slot after a free one (its connectivity field holds it), or kInvalidIndex.
+    std::uint32_t next_free_vertex(std::uint32_t v) const { return plain(vhe_[v]); }
+    std::uint32_t next_free_face(std::uint32_t f) const { return plain(fhe_[f]); }
+    std::uint32_t next_free_edge(std::uint32_t e) const { return plain(he_[2 * e].next); }
 
 private:
     friend struct MeshTestAccess;  // defined by the test suite only, to damage meshes on purpose
 
+    // Set in a free slot's connectivity field and in the free-list heads: slot | kFreeBit.
+    static constexpr std::uint32_t kFreeBit = std::uint32_t(1) << 31;
+    // A free-list link as a slot index (the list's end stays kInvalidIndex).
+    static constexpr std::uint32_t plain(std::uint32_t link) {
+        return link == kInvalidIndex ? kInvalidIndex : link & ~kFreeBit;
+    }
+    [[noreturn]] static void throw_too_many_halfedges(std::uint64_t halfedges, const char* what);
+
+    // New slots come from the free lists first. Their connectivity field is left marked (a
+    // reused edge) or set to kInvalidIndex (which has the bit too): the caller links them.
     Vertex new_vertex(const Vec3& p);
     Face new_face();
     Edge new_edge();
@@ -210,19 +247,17 @@ private:
     void replace_in_face(Halfedge old, Halfedge by);
 
     std::vector<Vec3> vpos_;
-    std::vector<std::uint32_t> vhe_;      // outgoing half-edge, or next free vertex
-    std::vector<std::uint8_t> vremoved_;
+    std::vector<std::uint32_t> vhe_;      // outgoing half-edge, or next free vertex | kFreeBit
     // A half-edge's target and next side by side: the one-ring walks read both (one cache line).
     struct HalfedgeLinks {
         std::uint32_t to;
-        std::uint32_t next;  // for edge e's first half-edge: the next free edge if e is dead
+        std::uint32_t next;  // for edge e's first half-edge: next free edge | kFreeBit if e is dead
         bool operator==(const HalfedgeLinks& o) const { return to == o.to && next == o.next; }
     };
     std::vector<HalfedgeLinks> he_;
     std::vector<std::uint32_t> he_face_;
-    std::vector<std::uint8_t> eremoved_;
-    std::vector<std::uint32_t> fhe_;      // a half-edge of the face, or next free face
-    std::vector<std::uint8_t> fremoved_;
+    std::vector<std::uint32_t> fhe_;      // a half-edge of the face, or next free face | kFreeBit
+    // Free-list heads, marked like the links (slot | kFreeBit, or kInvalidIndex when empty).
     std::uint32_t vfree_ = kInvalidIndex, ffree_ = kInvalidIndex, efree_ = kInvalidIndex;
     std::uint32_t n_vertices_ = 0, n_faces_ = 0, n_edges_ = 0;
 };

@@ -255,10 +255,108 @@ struct MeshTestAccess {
     static std::uint32_t& next(Mesh& m, std::uint32_t h) { return m.he_[h].next; }
     static std::vector<std::uint32_t>& vhe(Mesh& m) { return m.vhe_; }
     static std::vector<std::uint32_t>& fhe(Mesh& m) { return m.fhe_; }
-    static std::uint32_t& vfree(Mesh& m) { return m.vfree_; }
-    static std::vector<std::uint8_t>& fremoved(Mesh& m) { return m.fremoved_; }
+    // The dead mark is the top bit of a slot's own field; the heads are marked the same way.
+    static void set_free_vertex_head(Mesh& m, std::uint32_t v) { m.vfree_ = v | Mesh::kFreeBit; }
+    static void mark_face_free(Mesh& m, std::uint32_t f) { m.fhe_[f] |= Mesh::kFreeBit; }
+    static void mark_edge_free(Mesh& m, std::uint32_t e) { m.he_[2 * e].next |= Mesh::kFreeBit; }
+    static void unmark_vertex(Mesh& m, std::uint32_t v) { m.vhe_[v] &= ~Mesh::kFreeBit; }
+    // The alive-edge count split() checks the size limit against: a small mesh can pose as a
+    // huge one without 16 GiB of half-edges.
+    static std::uint32_t& n_edges(Mesh& m) { return m.n_edges_; }
 };
 }  // namespace nmesh
+
+TEST_CASE("freed slots are reused last freed first, the free-list links plain slot numbers") {
+    Mesh m = icosahedron();
+    // Two collapses. Each frees, in this order, the faces of h and of its twin, the edges of h,
+    // next(h) and prev(twin(h)), and the vertex from(h).
+    struct Freed {
+        std::uint32_t v, f[2], e[3];
+    };
+    auto collapse = [&](Vertex a, Vertex b) {
+        const Halfedge h = m.find_halfedge(a, b);
+        REQUIRE(h.valid());
+        const Freed r{a.idx,
+                      {m.face(h).idx, m.face(Mesh::twin(h)).idx},
+                      {Mesh::edge(h).idx, Mesh::edge(m.next(h)).idx, Mesh::edge(m.prev(Mesh::twin(h))).idx}};
+        REQUIRE(m.try_collapse(h));
+        REQUIRE(check_manifold(m).ok);
+        return r;
+    };
+    const Freed first = collapse(Vertex(0), Vertex(1));
+    const Freed second = collapse(Vertex(3), Vertex(2));  // 3 is not a neighbour of 0
+    for (std::uint32_t v : {first.v, second.v}) CHECK(m.is_removed(Vertex(v)));
+    // Each list runs from the last slot freed to the first, and ends at kInvalidIndex.
+    auto walk = [](std::uint32_t head, auto next) {
+        std::vector<std::uint32_t> list;
+        for (std::uint32_t s = head; s != kInvalidIndex && list.size() < 100; s = next(s)) list.push_back(s);
+        return list;
+    };
+    CHECK(walk(m.free_vertex_head(), [&](std::uint32_t s) { return m.next_free_vertex(s); }) ==
+          std::vector<std::uint32_t>{second.v, first.v});
+    CHECK(walk(m.free_face_head(), [&](std::uint32_t s) { return m.next_free_face(s); }) ==
+          std::vector<std::uint32_t>{second.f[1], second.f[0], first.f[1], first.f[0]});
+    CHECK(walk(m.free_edge_head(), [&](std::uint32_t s) { return m.next_free_edge(s); }) ==
+          std::vector<std::uint32_t>{second.e[2], second.e[1], second.e[0], first.e[2], first.e[1], first.e[0]});
+    // Each split takes the vertex, then the edges a-b, b-c, d-b, then the faces (a, b, c) and
+    // (b, a, d) from the heads.
+    const std::uint32_t vcap = m.vertex_capacity(), ecap = m.edge_capacity(), fcap = m.face_capacity();
+    for (const Freed& expect : {second, first}) {
+        const Vertex b = Vertex(5);
+        const Halfedge to_c = m.halfedge(b);
+        const Halfedge to_d = m.ccw_rotated(m.ccw_rotated(to_c));
+        const Vertex c = m.to(to_c), d = m.to(to_d);
+        const Vertex a = m.split(to_c, to_d, {});
+        REQUIRE(check_manifold(m).ok);
+        CHECK(a.idx == expect.v);
+        CHECK_FALSE(m.is_removed(a));
+        const Halfedge ab = Mesh::halfedge(Edge(expect.e[2]), 0);
+        CHECK(m.from(ab) == a);
+        CHECK(m.to(ab) == b);
+        CHECK(m.from(Mesh::halfedge(Edge(expect.e[1]), 0)) == b);
+        CHECK(m.to(Mesh::halfedge(Edge(expect.e[1]), 0)) == c);
+        CHECK(m.from(Mesh::halfedge(Edge(expect.e[0]), 0)) == d);
+        CHECK(m.to(Mesh::halfedge(Edge(expect.e[0]), 0)) == b);
+        CHECK(m.face(ab).idx == expect.f[1]);
+        CHECK(m.face(Mesh::twin(ab)).idx == expect.f[0]);
+    }
+    CHECK(m.free_vertex_head() == kInvalidIndex);
+    CHECK(m.free_face_head() == kInvalidIndex);
+    CHECK(m.free_edge_head() == kInvalidIndex);
+    CHECK(m.vertex_capacity() == vcap);
+    CHECK(m.edge_capacity() == ecap);
+    CHECK(m.face_capacity() == fcap);
+}
+
+TEST_CASE("the size limit: 2^31 half-edges") {
+    // Every half-edge index must stay below the dead mark's bit.
+    CHECK(std::uint64_t(Mesh::kMaxHalfedges) == std::uint64_t(1) << 31);
+    // kMaxVertices is the largest V whose closed genus-0 mesh (6V - 12 half-edges) fits.
+    CHECK(6 * std::uint64_t(Mesh::kMaxVertices) - 12 <= Mesh::kMaxHalfedges);
+    CHECK(6 * std::uint64_t(Mesh::kMaxVertices + 1) - 12 > Mesh::kMaxHalfedges);
+    CHECK_NOTHROW(Mesh::check_halfedge_count(Mesh::kMaxHalfedges, "test"));
+    CHECK_THROWS_WITH_AS(Mesh::check_halfedge_count(std::uint64_t(Mesh::kMaxHalfedges) + 1, "test"),
+                         doctest::Contains("mesh: test: 2147483649 half-edges"), InputError);
+    Mesh empty;
+    CHECK_THROWS_AS(empty.reserve(Mesh::kMaxVertices + 1), ParameterError);
+    CHECK_THROWS_WITH_AS(empty.reserve(0xffffffffu), doctest::Contains("357913943"), ParameterError);
+}
+
+TEST_CASE("split refuses to pass the size limit and leaves the mesh as it was") {
+    using A = MeshTestAccess;
+    // Posing as a mesh of 2^30 - 2 alive edges: a split's three new edges would need 2^31 + 2
+    // half-edges. (A split that succeeds under a posed count cannot be shown: the invariant
+    // build validates the mesh after it, and the count is false.)
+    Mesh m = icosahedron();
+    A::n_edges(m) = Mesh::kMaxHalfedges / 2 - 2;
+    const Mesh before = m;
+    const Halfedge h = m.halfedge(Vertex(0));
+    CHECK_THROWS_WITH_AS(m.split(h, m.ccw_rotated(m.ccw_rotated(h)), {}),
+                         doctest::Contains("mesh: split: 2147483650 half-edges"), InputError);
+    CHECK(m.same_arrays(before));
+    A::n_edges(m) = 30;  // the true count again: the refused split changed nothing
+    CHECK(check_manifold(m).ok);
+}
 
 namespace {
 void expect_error(const Mesh& m, const char* fragment) {
@@ -297,12 +395,29 @@ TEST_CASE("the validator names the first violation") {
     }
     {
         Mesh m = icosahedron();  // an alive face marked free: elements refer to a freed slot
-        A::fremoved(m)[3] = 1;
+        A::mark_face_free(m, 3);
+        CHECK(m.is_removed(Face(3)));
         expect_error(m, "face count");
     }
     {
+        Mesh m = icosahedron();  // an alive edge marked free (the mark is in its first next)
+        A::mark_edge_free(m, 7);
+        CHECK(m.is_removed(Edge(7)));
+        CHECK(m.is_removed(Halfedge(15)));
+        expect_error(m, "edge count");
+    }
+    {
+        Mesh m = octahedron();  // a free vertex whose mark is lost: a dead slot counted alive
+        REQUIRE(m.try_collapse(m.find_halfedge(Vertex(5), Vertex(0))));
+        REQUIRE(check_manifold(m).ok);
+        A::unmark_vertex(m, 5);
+        CHECK_FALSE(m.is_removed(Vertex(5)));
+        expect_error(m, "vertex count");
+    }
+    {
         Mesh m = icosahedron();  // a free list that points at an alive slot
-        A::vfree(m) = 2;
+        A::set_free_vertex_head(m, 2);
+        CHECK(m.free_vertex_head() == 2);
         expect_error(m, "free list");
     }
     {

@@ -1,7 +1,10 @@
 // Property tests of manifoldness: long seeded random sequences of split / collapse / flip on
-// meshes that grow and shrink, with the whole-mesh validator after every operation.
+// meshes that grow and shrink, with the whole-mesh validator after every operation; and the same
+// kind of sequences checked slot by slot against a brute-force model of what is alive and of the
+// free lists' order.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <random>
 
@@ -132,6 +135,171 @@ struct Walker {
 };
 
 }  // namespace
+
+namespace {
+
+// A brute-force model of one kind of slot, kept by the test beside the mesh: which slots are
+// alive, and the free slots as a stack (back = the next one reused).
+struct SlotModel {
+    std::vector<std::uint8_t> alive;
+    std::vector<std::uint32_t> free;
+
+    explicit SlotModel(std::uint32_t n) : alive(n, 1) {}
+    std::uint32_t take() {
+        if (free.empty()) {
+            alive.push_back(1);
+            return std::uint32_t(alive.size() - 1);
+        }
+        const std::uint32_t s = free.back();
+        free.pop_back();
+        alive[s] = 1;
+        return s;
+    }
+    void release(std::uint32_t s) {
+        REQUIRE(alive[s] == 1);
+        alive[s] = 0;
+        free.push_back(s);
+    }
+    std::uint32_t count() const { return std::uint32_t(std::count(alive.begin(), alive.end(), 1)); }
+    // The free list as the mesh should link it: from its head, the last slot freed, down.
+    std::vector<std::uint32_t> list() const { return {free.rbegin(), free.rend()}; }
+};
+
+template <class Next> std::vector<std::uint32_t> walk_free_list(std::uint32_t head, std::size_t capacity, Next next) {
+    std::vector<std::uint32_t> list;
+    for (std::uint32_t s = head; s != kInvalidIndex && list.size() <= capacity; s = next(s)) list.push_back(s);
+    return list;
+}
+
+struct ModelWalker {
+    Mesh mesh;
+    std::mt19937_64 rng;
+    SlotModel v{mesh.vertex_capacity()}, e{mesh.edge_capacity()}, f{mesh.face_capacity()};
+    std::uint64_t splits = 0, collapses = 0, flips = 0;
+
+    std::uint32_t below(std::uint32_t n) { return std::uint32_t(rng() % n); }
+    // A random alive slot, chosen by the model (not by is_removed, which is under test).
+    static std::uint32_t pick(const SlotModel& m, std::uint32_t r) {
+        std::vector<std::uint32_t> alive;
+        for (std::uint32_t s = 0; s < m.alive.size(); ++s)
+            if (m.alive[s]) alive.push_back(s);
+        return alive[r % alive.size()];
+    }
+    Halfedge random_halfedge() { return Mesh::halfedge(Edge(pick(e, below(1u << 30))), int(below(2))); }
+
+    // The mesh and the model agree on every slot, the counts, the capacities and the free lists.
+    void require_agreement(const char* after) {
+        INFO("after " << after);
+        REQUIRE(mesh.vertex_capacity() == v.alive.size());
+        REQUIRE(mesh.edge_capacity() == e.alive.size());
+        REQUIRE(mesh.face_capacity() == f.alive.size());
+        // The first slot where is_removed disagrees with the model, or kInvalidIndex.
+        auto first_wrong = [](const SlotModel& m, auto removed) {
+            for (std::uint32_t s = 0; s < m.alive.size(); ++s)
+                if (removed(s) != !m.alive[s]) return s;
+            return kInvalidIndex;
+        };
+        CHECK(first_wrong(v, [&](std::uint32_t s) { return mesh.is_removed(Vertex(s)); }) == kInvalidIndex);
+        CHECK(first_wrong(f, [&](std::uint32_t s) { return mesh.is_removed(Face(s)); }) == kInvalidIndex);
+        CHECK(first_wrong(e, [&](std::uint32_t s) { return mesh.is_removed(Edge(s)); }) == kInvalidIndex);
+        CHECK(first_wrong(e, [&](std::uint32_t s) { return mesh.is_removed(Mesh::halfedge(Edge(s), 0)); }) == kInvalidIndex);
+        CHECK(first_wrong(e, [&](std::uint32_t s) { return mesh.is_removed(Mesh::halfedge(Edge(s), 1)); }) == kInvalidIndex);
+        REQUIRE(mesh.n_vertices() == v.count());
+        REQUIRE(mesh.n_edges() == e.count());
+        REQUIRE(mesh.n_faces() == f.count());
+        REQUIRE(walk_free_list(mesh.free_vertex_head(), v.alive.size(), [&](std::uint32_t s) { return mesh.next_free_vertex(s); }) == v.list());
+        REQUIRE(walk_free_list(mesh.free_edge_head(), e.alive.size(), [&](std::uint32_t s) { return mesh.next_free_edge(s); }) == e.list());
+        REQUIRE(walk_free_list(mesh.free_face_head(), f.alive.size(), [&](std::uint32_t s) { return mesh.next_free_face(s); }) == f.list());
+    }
+
+    // The slots a split takes, in this order: vertex a; edges a-b, b-c, d-b; faces (a, b, c),
+    // (b, a, d); each from its free list's head, else a new slot.
+    void split() {
+        const Vertex b(pick(v, below(1u << 30)));
+        const std::uint32_t n = mesh.valence(b);
+        Halfedge to_c = mesh.halfedge(b);
+        for (std::uint32_t i = below(n); i > 0; --i) to_c = mesh.ccw_rotated(to_c);
+        Halfedge to_d = to_c;
+        for (std::uint32_t i = 1 + below(n - 1); i > 0; --i) to_d = mesh.ccw_rotated(to_d);
+        const Vertex c = mesh.to(to_c), d = mesh.to(to_d);
+        REQUIRE(mesh.can_split(to_c, to_d));
+        const std::uint32_t a = v.take(), ab = e.take(), bc = e.take(), db = e.take(), f0 = f.take(), f1 = f.take();
+        REQUIRE(mesh.split(to_c, to_d, mesh.position(b)).idx == a);
+        const Halfedge h = Mesh::halfedge(Edge(ab), 0);
+        REQUIRE((mesh.from(h) == Vertex(a) && mesh.to(h) == b));
+        REQUIRE((mesh.from(Mesh::halfedge(Edge(bc), 0)) == b && mesh.to(Mesh::halfedge(Edge(bc), 0)) == c));
+        REQUIRE((mesh.from(Mesh::halfedge(Edge(db), 0)) == d && mesh.to(Mesh::halfedge(Edge(db), 0)) == b));
+        REQUIRE((mesh.face(h).idx == f0 && mesh.face(Mesh::twin(h)).idx == f1));
+        ++splits;
+        require_agreement("split");
+    }
+
+    // The slots a collapse of h frees, in this order: faces of h and of twin(h); edges of h,
+    // next(h), prev(twin(h)); vertex from(h).
+    void collapse() {
+        const Halfedge h = random_halfedge();
+        if (!mesh.can_collapse(h)) return;
+        const Halfedge t = Mesh::twin(h);
+        const std::uint32_t fh = mesh.face(h).idx, ft = mesh.face(t).idx;
+        const std::uint32_t eh = Mesh::edge(h).idx, en = Mesh::edge(mesh.next(h)).idx, ep = Mesh::edge(mesh.prev(t)).idx;
+        const std::uint32_t a = mesh.from(h).idx;
+        mesh.collapse(h);
+        f.release(fh);
+        f.release(ft);
+        e.release(eh);
+        e.release(en);
+        e.release(ep);
+        v.release(a);
+        ++collapses;
+        require_agreement("collapse");
+    }
+
+    void flip() {
+        const Halfedge h = random_halfedge();
+        if (!mesh.can_flip(h)) return;
+        const Mesh before = mesh;
+        const FlipRecord r = mesh.flip(h);
+        ++flips;
+        require_agreement("flip");
+        if (below(4) == 0) {
+            mesh.unflip(r);
+            REQUIRE(mesh.same_arrays(before));
+        }
+    }
+
+    void step(bool growing) {
+        const std::uint32_t r = below(100);
+        if (r < (growing ? 50u : 15u)) split();
+        else if (r < 75) collapse();
+        else flip();
+    }
+};
+
+}  // namespace
+
+TEST_CASE("is_removed and the free lists agree with a brute-force model after random operations") {
+    std::uint64_t splits = 0, collapses = 0, flips = 0;
+    for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+        CAPTURE(seed);
+        ModelWalker w{seed % 2 ? Mesh::tetrahedron() : nmesh::test::icosahedron(), std::mt19937_64(seed)};
+        w.require_agreement("construction");
+        const std::uint32_t high = seed % 4 == 0 ? 20 : 80;
+        for (int cycle = 0; cycle < 6; ++cycle) {
+            while (w.mesh.n_vertices() < high) w.step(/*growing=*/true);
+            while (w.mesh.n_vertices() > 6) w.step(/*growing=*/false);
+        }
+        REQUIRE(check_manifold(w.mesh).ok);
+        splits += w.splits;
+        collapses += w.collapses;
+        flips += w.flips;
+    }
+    std::printf("is_removed model: %llu splits, %llu collapses, %llu flips checked\n", (unsigned long long)splits,
+                (unsigned long long)collapses, (unsigned long long)flips);
+    // Enough of each for the free lists to fill, empty and reorder many times.
+    CHECK(splits > 1000);
+    CHECK(collapses > 1000);
+    CHECK(flips > 1000);
+}
 
 TEST_CASE("random split/collapse/flip sequences keep a valid closed manifold") {
     Tally tally;
