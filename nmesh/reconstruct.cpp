@@ -9,6 +9,7 @@
 #include "nmesh/cloud_sample.h"
 #include "nmesh/error.h"
 #include "nmesh/finish.h"
+#include "nmesh/mesh.h"
 #include "nmesh/neural_mesh.h"
 
 namespace nmesh {
@@ -18,6 +19,9 @@ void Parameters::validate() const {
         throw ParameterError("invalid parameter " + name + ": " + why);
     };
     if (target_vertices < 4) bad("target_vertices", "must be at least 4 (a tetrahedron), got " + std::to_string(target_vertices));
+    if (target_vertices > Mesh::kMaxVertices - 16)
+        bad("target_vertices", "must be at most " + std::to_string(Mesh::kMaxVertices - 16) +
+                                   " (the mesh holds at most 2^31 half-edges), got " + std::to_string(target_vertices));
     if (!(alpha_w > 0.0 && alpha_w <= 1.0)) bad("alpha_w", "must be in (0, 1], got " + std::to_string(alpha_w));
     if (!(alpha_n >= 0.0 && alpha_n <= 1.0)) bad("alpha_n", "must be in [0, 1], got " + std::to_string(alpha_n));
     if (!(alpha > 0.0 && alpha < 1.0)) bad("alpha", "must be in (0, 1), got " + std::to_string(alpha));

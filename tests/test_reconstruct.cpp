@@ -449,6 +449,7 @@ TEST_CASE("invalid parameters are refused, naming the parameter") {
         CHECK_THROWS_WITH_AS(reconstruct(cloud, p), doctest::Contains(name), ParameterError);
     };
     refuses([](Parameters& p) { p.target_vertices = 3; }, "target_vertices");
+    refuses([](Parameters& p) { p.target_vertices = Mesh::kMaxVertices - 15; }, "at most 357913927");
     refuses([](Parameters& p) { p.alpha_w = -0.1; }, "alpha_w");
     refuses([](Parameters& p) { p.alpha_w = 0.0; }, "alpha_w");
     refuses([](Parameters& p) { p.alpha_n = 1.5; }, "alpha_n");
