@@ -32,17 +32,21 @@ double ActivityIndex::checked_counter(double tau, const char* what) {
     return tau;
 }
 
+void ActivityIndex::stamps_exhausted() {
+    throw ParameterError("ActivityIndex: more than 2^48 - 1 signals and additions (the stamps are exhausted)");
+}
+
 // --- vertices ------------------------------------------------------------------------------
 
 void ActivityIndex::add(std::uint32_t v, double tau) {
     assert(v != kNone && !contains(v));
     checked_counter(tau, "add");
+    const std::uint64_t stamps = next_stamps();
     if (v >= nodes_.size()) nodes_.resize(std::max<std::size_t>(std::size_t(v) + 1, 2 * nodes_.size()));
     Node& n = nodes_[v];
     n.raw = tau * scale_;
-    n.epoch = epoch_;
-    n.last_signal = now_;
-    n.stamp = ++stamps_;
+    n.stamp_epoch = stamps | (epoch_ & kEpochMask);
+    stamps_ = stamps;
     link_bucket(v, bucket_key(n));
     ++size_;
 }
@@ -61,7 +65,7 @@ void ActivityIndex::set_counter(std::uint32_t v, double tau) {
     Node& n = nodes_[v];
     const std::uint64_t old_key = bucket_key(n);
     n.raw = tau * scale_;
-    n.epoch = epoch_;
+    n.stamp_epoch = (n.stamp_epoch & ~kEpochMask) | (epoch_ & kEpochMask);
     const std::uint64_t new_key = bucket_key(n);
     if (new_key != old_key) move_to_bucket(v, old_key, new_key);
 }
@@ -118,7 +122,7 @@ void ActivityIndex::unlink_bucket(std::uint32_t v, std::uint64_t key) {
 // The scale is divided by 2^kScaleBits, so every stored key drops by kEpochKeys relative to the
 // window: the buckets of the lowest kEpochKeys keys (the first summary word) are dropped — their
 // vertices retire — and the bitmaps shift down by that much. O(1): at most 4096 buckets, found
-// through 64 bitmap words.
+// through 64 bitmap words; and once every kSweepEpochs epochs, O(largest id) (sweep_lagging).
 void ActivityIndex::begin_epoch() {
     scale_ = std::ldexp(scale_, -kScaleBits);
     const std::uint64_t base = epoch_ * kEpochKeys;
@@ -135,6 +139,21 @@ void ActivityIndex::begin_epoch() {
     for (std::size_t s = 0; s + 1 < kSummaryWords; ++s) summary_bits_[s] = summary_bits_[s + 1];
     summary_bits_[kSummaryWords - 1] = 0;
     ++epoch_;
+    if (epoch_ % kSweepEpochs == 0) sweep_lagging();
+}
+
+// Records keep their epoch mod 2^kEpochBits, which gives their lag right only below
+// 2^kEpochBits epochs. Those that lag kGoneLag or more (the retired vertices not signalled for
+// that long, up to all of them) read as 0 and are in no list, whatever their raw: rewritten to
+// lag exactly kGoneLag, they still read as 0 and are still retired (key below
+// epoch_ * kEpochKeys: see bucket_key), raw and stamp unchanged, and their lag cannot reach
+// 2^kEpochBits before the next sweep, kSweepEpochs epochs later. Free slots (Node{}) are
+// rewritten too, harmlessly: add() overwrites them. O(largest id), once every kSweepEpochs
+// epochs.
+void ActivityIndex::sweep_lagging() {
+    const std::uint64_t gone_epoch = (epoch_ - kGoneLag) & kEpochMask;
+    for (Node& n : nodes_)
+        if (lag(n) >= kGoneLag) n.stamp_epoch = (n.stamp_epoch & ~kEpochMask) | gone_epoch;
 }
 
 // --- queries -------------------------------------------------------------------------------
@@ -174,13 +193,13 @@ std::uint32_t ActivityIndex::most_active() const {
     return best;
 }
 
-void ActivityIndex::collect_inactive(std::uint64_t since, std::vector<std::uint32_t>& out) const {
+void ActivityIndex::collect_inactive(std::uint64_t mark, std::vector<std::uint32_t>& out) const {
     const std::size_t first = out.size();
     for (std::uint32_t v = 0; v < nodes_.size(); ++v)
-        if (contains(v) && nodes_[v].last_signal < since) out.push_back(v);
-    // Stamps grow with time, so their order is the order of (last signal, stamp).
+        if (contains(v) && stamp(nodes_[v]) <= mark) out.push_back(v);
+    // Every stamp is given once, so the vertices' stamps differ: the order is total.
     std::sort(out.begin() + std::ptrdiff_t(first), out.end(),
-              [&](std::uint32_t a, std::uint32_t b) { return nodes_[a].stamp < nodes_[b].stamp; });
+              [&](std::uint32_t a, std::uint32_t b) { return stamp(nodes_[a]) < stamp(nodes_[b]); });
 }
 
 }  // namespace nmesh

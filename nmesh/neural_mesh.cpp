@@ -314,7 +314,10 @@ void NeuralMesh::remove_inactive() {
     ++stats_.removal_passes;
     inactive_.clear();
     activity_.collect_inactive(period_start_, inactive_);
-    period_start_ = activity_.now();
+    // Periods are bounded by decays (iterations): the new one starts at this iteration's decay,
+    // so a vertex that this iteration's split added counts as created during it, and first faces
+    // the pass after next (hence clock_mark(), not mark()).
+    period_start_ = activity_.clock_mark();
     for (const std::uint32_t vi : inactive_) {
         const Vertex v(vi);
         if (mesh_.is_removed(v)) continue;

@@ -122,7 +122,7 @@ private:
     bool profiling_ = false;
     std::uint64_t iteration_ = 0;
     std::uint64_t next_removal_ = 0;  // iteration of the next step 8
-    std::uint64_t period_start_ = 0;  // activity clock at the start of the current step-8 period
+    std::uint64_t period_start_ = 0;  // activity mark at the start of the current step-8 period
     // Scratch space reused across iterations (no allocation in steady state).
     std::vector<std::uint32_t> ring_;  // the ring of a vertex not in the ring cache
     std::vector<std::uint32_t> ring2_;

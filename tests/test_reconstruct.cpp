@@ -234,13 +234,13 @@ TEST_CASE("step 8 removes exactly the vertices that won no signal in the period"
     p.target_vertices = 200;
     NeuralMesh engine(cloud.points, bounding_box(cloud.points), p);
     while (engine.mesh().n_vertices() < 60) engine.iterate();
-    // Collect the vertices that will be judged inactive, by brute force over last-signal times.
-    engine.remove_inactive();  // starts a fresh period
-    const std::uint64_t period_start = engine.activity().now();
+    // Collect the vertices that will be judged inactive, by brute force over last-signal stamps.
+    engine.remove_inactive();  // starts a fresh period, at the latest decay
+    const std::uint64_t period_start = engine.activity().clock_mark();
     for (int i = 0; i < 500; ++i) engine.adapt();
     std::vector<std::uint32_t> idle;
     for (std::uint32_t v = 0; v < engine.mesh().vertex_capacity(); ++v)
-        if (!engine.mesh().is_removed(Vertex(v)) && engine.activity().last_signal(v) < period_start) idle.push_back(v);
+        if (!engine.mesh().is_removed(Vertex(v)) && engine.activity().last_stamp(v) <= period_start) idle.push_back(v);
     const std::uint32_t before = engine.mesh().n_vertices();
     const std::uint64_t refused_before = engine.stats().collapses_refused;
     engine.remove_inactive();
