@@ -194,12 +194,11 @@ private:
     static_assert(sizeof(Node) == 24, "a record is 24 bytes per vertex");
 
     static std::uint64_t stamp(const Node& n) { return n.stamp_epoch >> kEpochBits; }
-    // stamps_ advanced by one stamp. Throws (changing nothing) past kMaxStamp: the 64-bit
-    // addition carries, a branch never taken.
+    // stamps_ advanced by one stamp. Throws (changing nothing) past kMaxStamp, where the 64-bit
+    // addition would carry: a branch never taken.
     std::uint64_t next_stamps() const {
-        std::uint64_t next;
-        if (__builtin_add_overflow(stamps_, kStampUnit, &next)) stamps_exhausted();
-        return next;
+        if (stamps_ > ~std::uint64_t(0) - kStampUnit) stamps_exhausted();
+        return stamps_ + kStampUnit;
     }
     // How many epochs ago raw was written: exact, as lags stay below 2^kEpochBits.
     std::uint64_t lag(const Node& n) const { return (epoch_ - n.stamp_epoch) & kEpochMask; }
