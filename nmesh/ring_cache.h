@@ -1,17 +1,11 @@
-// nmesh/ring_cache.h — each vertex's one-ring as a list of neighbour ids in 48 contiguous bytes.
+// nmesh/ring_cache.h — each vertex's one-ring as a list of neighbour ids in one cache line.
 //
 // The smoothing step (eq. 3-5) reads the ring of the winner and the ring of every vertex in it:
 // about 40 neighbours per iteration. Walking them on the half-edge mesh is a chain of dependent
 // loads (half-edge -> twin's next -> target -> position), each a cache miss once the mesh
-// outgrows the cache. Here a vertex's neighbours sit side by side in a 48-byte record (within one
-// 64-byte cache line or across two adjacent ones), so an iteration loads the winner's record, then
-// its neighbours' records (independent of each other, fetched in parallel), then the positions:
-// three rounds of memory latency instead of dozens.
-//
-// Choice of 48 bytes (11 ids and a count) over a whole cache line (15 ids): 16 bytes less per
-// vertex, for the 0.9% of vertices (valence 12 or more) that the smoothing then walks on the mesh.
-// The learnt bunny at 30,000 vertices is learnt with the same instruction count (cachegrind: 9.355
-// G either way), and the same bits.
+// outgrows the cache. Here a vertex's neighbours sit side by side in one 64-byte line, so an
+// iteration loads the winner's line, then its neighbours' lines (independent of each other,
+// fetched in parallel), then the positions: three rounds of memory latency instead of dozens.
 //
 // The cache is derived data: the half-edge Mesh stays the one description of the connectivity.
 // Whoever changes the mesh refreshes the vertices whose neighbour lists changed (O(valence)
@@ -30,9 +24,9 @@ namespace nmesh {
 
 class RingCache {
 public:
-    // Neighbours stored per vertex: 11 ids and a count. Valences above 11 are rare in a learnt mesh
-    // (264 of the 30,000 vertices of the learnt bunny; the mean is 6).
-    static constexpr std::uint32_t kCapacity = 11;
+    // Neighbours stored per vertex: 15 ids and a count fill one cache line. Valences above 15 are
+    // rare in a learnt mesh (35 of the 30,000 vertices of the learnt bunny; the mean is 6).
+    static constexpr std::uint32_t kCapacity = 15;
 
     // Makes room for vertex ids below n.
     void reserve(std::size_t n) { lines_.reserve(n); }
@@ -52,13 +46,8 @@ public:
     std::uint32_t count(Vertex v) const { return lines_[v.idx].count; }
     // v's neighbours, clockwise; count(v) of them.
     const std::uint32_t* neighbours(Vertex v) const { return lines_[v.idx].ids; }
-    // Starts loading v's record into the cache (a hint; no effect on any result): both of its
-    // ends, since half of the records span two cache lines.
-    void prefetch(Vertex v) const {
-        const char* record = reinterpret_cast<const char*>(&lines_[v.idx]);
-        prefetch_for_read(record);
-        prefetch_for_read(record + sizeof(Line) - 1);
-    }
+    // Starts loading v's line into the cache (a hint; no effect on any result).
+    void prefetch(Vertex v) const { prefetch_for_read(&lines_[v.idx]); }
 
     // An empty string when every alive vertex of `mesh` is cached with its current neighbours in
     // clockwise order (any starting point) or marked as not cached with a valence above
@@ -68,11 +57,11 @@ public:
     std::size_t memory_bytes() const { return lines_.capacity() * sizeof(Line); }
 
 private:
-    struct alignas(16) Line {
+    struct alignas(64) Line {
         std::uint32_t count;
         std::uint32_t ids[kCapacity];
     };
-    static_assert(sizeof(Line) == 48, "a ring takes 48 bytes");
+    static_assert(sizeof(Line) == 64, "a ring must fill exactly one cache line");
     std::vector<Line> lines_;
     std::uint32_t limit_ = kCapacity;
 };
