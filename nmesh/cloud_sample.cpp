@@ -36,4 +36,9 @@ std::unique_ptr<PointGrid> index_cloud(const std::vector<Vec3>& points, const Po
     return std::make_unique<PointGrid>(sample, transform, bounds);
 }
 
+void record_index(const PointGrid& index, Statistics& stats) {
+    stats.indexed_points = index.size();
+    stats.index_bytes = index.memory_bytes();
+}
+
 }  // namespace nmesh

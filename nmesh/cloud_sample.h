@@ -42,4 +42,7 @@ std::size_t index_point_count(std::size_t n, const Parameters& params);
 std::unique_ptr<PointGrid> index_cloud(const std::vector<Vec3>& points, const PointTransform& transform,
                                        const BoundingBox& bounds, const Parameters& params);
 
+// Statistics::indexed_points and index_bytes for `index`.
+void record_index(const PointGrid& index, Statistics& stats);
+
 }  // namespace nmesh

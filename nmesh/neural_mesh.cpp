@@ -26,9 +26,10 @@ NeuralMesh::NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bound
     // circumradius of a quarter of the box's diagonal: inside the data for a closed scan, and
     // large enough that all four vertices win signals from the start.
     mesh_ = Mesh::tetrahedron(bounds.center(), float(bounds.diagonal() * 0.25));
-    mesh_.reserve(params.target_vertices + 16);
-    grid_.reserve(params.target_vertices + 16);
-    activity_.reserve(params.target_vertices + 16);
+    const std::uint32_t room = params.target_vertices + kReserveSlack;
+    mesh_.reserve(room);
+    grid_.reserve(room);
+    activity_.reserve(room);
     for (std::uint32_t v = 0; v < 4; ++v) {
         grid_.insert(v, mesh_.position(Vertex(v)));
         activity_.add(v, 0.0);
@@ -37,8 +38,7 @@ NeuralMesh::NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bound
         // Eq. (9) against the cloud, or against the stratified sample that stands for a cloud
         // much denser than the mesh (Parameters::index_points_per_vertex).
         cloud_index_ = index_cloud(points_, transform_, bounds, params_);
-        stats_.indexed_points = cloud_index_->size();
-        stats_.index_bytes = cloud_index_->memory_bytes();
+        record_index(*cloud_index_, stats_);
     }
     next_removal_ = std::uint64_t(params_.cec) * mesh_.n_vertices();
     for (Vec3& a : ahead_) a = transform_(points_[rng_.below(std::uint32_t(points_.size()))]);
@@ -47,7 +47,7 @@ NeuralMesh::NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bound
     ring_.reserve(64);
     ring2_.reserve(64);
     updated_.resize(16);
-    rings_.reserve(params.target_vertices + 16);
+    rings_.reserve(room);
     for (std::uint32_t v = 0; v < 4; ++v) rings_.refresh(mesh_, Vertex(v));
     swap_ring_.reserve(64);
     swap_dm_.reserve(64);

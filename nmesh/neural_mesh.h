@@ -26,6 +26,12 @@ namespace nmesh {
 
 class NeuralMesh {
 public:
+    // The engine reserves room for the target plus this margin in its mesh, grid, activity index
+    // and ring cache, so the largest target is the mesh's limit less the margin
+    // (Parameters::validate refuses more).
+    static constexpr std::uint32_t kReserveSlack = 16;
+    static constexpr std::uint32_t kMaxTargetVertices = Mesh::kMaxVertices - kReserveSlack;
+
     // The engine learns `transform(p)` for the points p of `points`, which must outlive it.
     // The transformed points should be normalised (reconstruct() centres them and scales them
     // into a box of diagonal at most 1), finite, and `bounds` is their exact bounding box (the

@@ -9,7 +9,6 @@
 #include "nmesh/cloud_sample.h"
 #include "nmesh/error.h"
 #include "nmesh/finish.h"
-#include "nmesh/mesh.h"
 #include "nmesh/neural_mesh.h"
 
 namespace nmesh {
@@ -19,8 +18,8 @@ void Parameters::validate() const {
         throw ParameterError("invalid parameter " + name + ": " + why);
     };
     if (target_vertices < 4) bad("target_vertices", "must be at least 4 (a tetrahedron), got " + std::to_string(target_vertices));
-    if (target_vertices > Mesh::kMaxVertices - 16)
-        bad("target_vertices", "must be at most " + std::to_string(Mesh::kMaxVertices - 16) +
+    if (target_vertices > NeuralMesh::kMaxTargetVertices)
+        bad("target_vertices", "must be at most " + std::to_string(NeuralMesh::kMaxTargetVertices) +
                                    " (the mesh holds at most 2^31 half-edges), got " + std::to_string(target_vertices));
     if (!(alpha_w > 0.0 && alpha_w <= 1.0)) bad("alpha_w", "must be in (0, 1], got " + std::to_string(alpha_w));
     if (!(alpha_n >= 0.0 && alpha_n <= 1.0)) bad("alpha_n", "must be in [0, 1], got " + std::to_string(alpha_n));
@@ -214,8 +213,7 @@ Result reconstruct(const PointCloud& cloud, const Parameters& params, const Call
     if (finish) {
         if (!cloud_index) {
             cloud_index = index_cloud(cloud.points, norm.transform, norm.bounds, params);
-            result.stats.indexed_points = cloud_index->size();
-            result.stats.index_bytes = cloud_index->memory_bytes();
+            record_index(*cloud_index, result.stats);
         }
         Mesh mesh = learnt;
         FinishOptions options;

@@ -24,7 +24,7 @@ namespace nmesh {
 // the 30,000-vertex bunny), except the target size, which a caller should choose.
 struct Parameters {
     std::uint32_t target_vertices = 10000;  // step 9: stop at this many vertices (>= 4, and at
-                                            // most Mesh::kMaxVertices - 16: the engine reserves 16 more)
+                                            // most NeuralMesh::kMaxTargetVertices, 357,913,927)
     double alpha_w = 0.08;   // eq. (2): learning rate of the winner vertex, in (0, 1]
     double alpha_n = 0.01;   // eq. (3): learning rate of the winner's neighbours, in [0, 1]
     double alpha = 0.95;     // eq. (7): signal counter decay per iteration, in (0, 1)
