@@ -1004,6 +1004,7 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
                          const PointGrid* cloud_index) {
     const auto start = std::chrono::steady_clock::now();
     FinishReport report;
+    mesh.build_faces();  // the learnt mesh comes without its face index (NeuralMesh::mesh)
     if (is_flat(cloud)) {
         report.skipped_flat = true;
         return report;

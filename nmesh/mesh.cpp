@@ -120,8 +120,33 @@ void Mesh::reserve(std::uint32_t n) {
     vhe_.reserve(n);
     const std::size_t nh = std::size_t(n) * 6, nf = std::size_t(n) * 2;
     he_.reserve(nh);
-    he_face_.reserve(nh);
-    fhe_.reserve(nf);
+    if (faces_) {
+        he_face_.reserve(nh);
+        fhe_.reserve(nf);
+    }
+}
+
+void Mesh::drop_faces() {
+    std::vector<std::uint32_t>().swap(he_face_);  // the memory itself goes, not just the size
+    std::vector<std::uint32_t>().swap(fhe_);
+    ffree_ = kInvalidIndex;
+    faces_ = false;
+}
+
+void Mesh::build_faces() {
+    if (faces_) return;
+    he_face_.assign(he_.size(), kInvalidIndex);  // dead half-edges keep kInvalidIndex
+    fhe_.reserve(n_faces_);
+    // Visited in increasing order, a triangle is met first at its smallest half-edge.
+    for (std::uint32_t h = 0; h < he_.size(); ++h) {
+        if (he_face_[h] != kInvalidIndex || is_removed(Halfedge(h))) continue;
+        const std::uint32_t f = std::uint32_t(fhe_.size());
+        const std::uint32_t h1 = he_[h].next, h2 = he_[h1].next;
+        he_face_[h] = he_face_[h1] = he_face_[h2] = f;
+        fhe_.push_back(h);
+    }
+    assert(fhe_.size() == n_faces_);
+    faces_ = true;
 }
 
 void Mesh::throw_too_many_halfedges(std::uint64_t halfedges, const char* what) {
@@ -149,6 +174,7 @@ Vertex Mesh::new_vertex(const Vec3& p) {
 
 Face Mesh::new_face() {
     ++n_faces_;
+    if (!faces_) return Face();
     if (ffree_ != kInvalidIndex) {
         const std::uint32_t f = ffree_ & ~kFreeBit;
         ffree_ = fhe_[f];
@@ -171,7 +197,7 @@ Edge Mesh::new_edge() {
     assert(he_.size() + 2 <= kMaxHalfedges);
     for (int i = 0; i < 2; ++i) {
         he_.push_back({kInvalidIndex, kInvalidIndex});
-        he_face_.push_back(kInvalidIndex);
+        if (faces_) he_face_.push_back(kInvalidIndex);
     }
     return Edge(std::uint32_t(he_.size() / 2 - 1));
 }
@@ -184,6 +210,7 @@ void Mesh::delete_vertex(Vertex v) {
 
 void Mesh::delete_face(Face f) {
     --n_faces_;
+    if (!faces_) return;
     fhe_[f.idx] = ffree_;
     ffree_ = f.idx | kFreeBit;
 }
@@ -200,15 +227,17 @@ void Mesh::link_face(Face f, Halfedge h0, Halfedge h1, Halfedge h2) {
     he_[h0.idx].next = h1.idx;
     he_[h1.idx].next = h2.idx;
     he_[h2.idx].next = h0.idx;
+    if (!faces_) return;
     he_face_[h0.idx] = he_face_[h1.idx] = he_face_[h2.idx] = f.idx;
     fhe_[f.idx] = h0.idx;
 }
 
 void Mesh::replace_in_face(Halfedge old, Halfedge by) {
     const Halfedge p = prev(old), n = next(old);
-    const Face f = face(old);
     he_[p.idx].next = by.idx;
     he_[by.idx].next = n.idx;
+    if (!faces_) return;
+    const Face f = face(old);
     he_face_[by.idx] = f.idx;
     if (fhe_[f.idx] == old.idx) fhe_[f.idx] = by.idx;
 }
@@ -248,6 +277,11 @@ float Mesh::face_area(Face f) const {
 Vec3 Mesh::face_centroid(Face f) const {
     const Halfedge h = halfedge(f);
     return (position(from(h)) + position(to(h)) + position(to(next(h)))) * (1.0f / 3.0f);
+}
+
+Vec3 Mesh::triangle_centroid(Halfedge h) const {
+    const Halfedge first = first_of_triangle(h);
+    return (position(from(first)) + position(to(first)) + position(to(next(first)))) * (1.0f / 3.0f);
 }
 
 Vec3 Mesh::vertex_normal(Vertex v) const {
@@ -351,7 +385,7 @@ void Mesh::collapse(Halfedge h) {
     const Halfedge hn = next(h), hp = next(hn);
     const Halfedge t = twin(h), tn = next(t), tp = next(tn);
     const Vertex a = from(h), b = to(h), c = to(hn), d = to(tn);
-    const Face f0 = face(h), f1 = face(t);
+    const Face f0 = faces_ ? face(h) : Face(), f1 = faces_ ? face(t) : Face();
     const Halfedge on = twin(hn), op = twin(tp);
 
     // Everything that pointed to a now points to b.
@@ -393,8 +427,9 @@ FlipRecord Mesh::flip(Halfedge h) {
     const Halfedge hn = next(h), hp = next(hn);
     const Halfedge t = twin(h), tn = next(t), tp = next(tn);
     const Vertex a = from(h), b = to(h);
-    const Face f0 = face(h), f1 = face(t);
-    FlipRecord r{h, halfedge(a), halfedge(b), {halfedge(f0), halfedge(f1)}};
+    const Face f0 = faces_ ? face(h) : Face(), f1 = faces_ ? face(t) : Face();
+    FlipRecord r{h, halfedge(a), halfedge(b), {}};
+    if (faces_) r.old_face_he[0] = halfedge(f0), r.old_face_he[1] = halfedge(f1);
 
     he_[h.idx].to = he_[hn.idx].to;  // c
     he_[t.idx].to = he_[tn.idx].to;  // d
@@ -414,15 +449,17 @@ void Mesh::unflip(const FlipRecord& r) {
     const Halfedge h = r.h, t = twin(h);
     const Halfedge x = next(h), y = next(x);
     const Halfedge u = next(t), w = next(u);
-    const Face f0 = face(h), f1 = face(t);
+    const Face f0 = faces_ ? face(h) : Face(), f1 = faces_ ? face(t) : Face();
     he_[h.idx].to = he_[u.idx].to;  // b
     he_[t.idx].to = he_[x.idx].to;  // a
     link_face(f0, h, w, x);
     link_face(f1, t, y, u);
     vhe_[from(h).idx] = r.old_out_from.idx;
     vhe_[to(h).idx] = r.old_out_to.idx;
-    fhe_[f0.idx] = r.old_face_he[0].idx;
-    fhe_[f1.idx] = r.old_face_he[1].idx;
+    if (faces_) {
+        fhe_[f0.idx] = r.old_face_he[0].idx;
+        fhe_[f1.idx] = r.old_face_he[1].idx;
+    }
 #ifdef NMESH_CHECK_INVARIANTS
     assert_manifold(*this, "unflip");
 #endif
@@ -442,10 +479,13 @@ IndexedMesh Mesh::to_indexed(std::vector<std::uint32_t>* vertex_map) const {
         out.positions.push_back(vpos_[v]);
     }
     out.triangles.reserve(n_faces_);
-    for (std::uint32_t f = 0; f < face_capacity(); ++f) {
-        if (is_removed(Face(f))) continue;
-        const Halfedge h = halfedge(Face(f));
-        out.triangles.push_back({map[from(h).idx], map[to(h).idx], map[to(next(h)).idx]});
+    auto add = [&](Halfedge h) { out.triangles.push_back({map[from(h).idx], map[to(h).idx], map[to(next(h)).idx]}); };
+    if (faces_) {
+        for (std::uint32_t f = 0; f < face_capacity(); ++f)
+            if (!is_removed(Face(f))) add(halfedge(Face(f)));
+    } else {
+        for (std::uint32_t h = 0; h < halfedge_capacity(); ++h)
+            if (!is_removed(Halfedge(h)) && first_of_triangle(Halfedge(h)).idx == h) add(Halfedge(h));
     }
     return out;
 }
@@ -454,7 +494,7 @@ bool Mesh::same_arrays(const Mesh& o) const {
     // The dead marks and free lists live in vhe_, he_ and fhe_ and the heads.
     return vhe_ == o.vhe_ && he_ == o.he_ && he_face_ == o.he_face_ && fhe_ == o.fhe_ && vfree_ == o.vfree_ &&
            ffree_ == o.ffree_ && efree_ == o.efree_ && n_vertices_ == o.n_vertices_ &&
-           n_faces_ == o.n_faces_ && n_edges_ == o.n_edges_ && vpos_.size() == o.vpos_.size() &&
+           n_faces_ == o.n_faces_ && n_edges_ == o.n_edges_ && faces_ == o.faces_ && vpos_.size() == o.vpos_.size() &&
            std::equal(vpos_.begin(), vpos_.end(), o.vpos_.begin(),
                       [](const Vec3& p, const Vec3& q) { return p == q; });
 }

@@ -16,6 +16,17 @@
 //   - about 96 bytes per vertex in all (12 position, 4 outgoing half-edge, 6 x 12 half-edge
 //     links and face, 2 x 4 face half-edge).
 //
+// Faces are an index beside the connectivity: the next() cycles alone describe the triangles,
+// and the face of each half-edge (he_face_) and the half-edge of each face (fhe_) only name them.
+// drop_faces() frees that index (32 bytes per vertex: 64 instead of 96) and build_faces() makes
+// it again, in O(half-edges). Without it, the operations keep the same connectivity, half-edge,
+// edge and vertex slots and counts (n_faces() included), the triangles can be read through
+// next() and to_indexed(), and only the Face handles are unavailable (face(), halfedge(Face),
+// is_removed(Face), face_normal/area/centroid; face_capacity() is 0). The learning loop, which
+// needs no face names, runs without it; the finishing stage builds it. Built
+// faces are numbered by their smallest half-edge, each starting at it: the order to_indexed()
+// gives the triangles in without the index, so that building it changes no output.
+//
 // Size limit: alive fields must stay below the bit, so a mesh holds at most 2^31 half-edges
 // (kMaxHalfedges), about 358 million vertices (kMaxVertices; a closed genus-0 mesh of V vertices
 // has 6V - 12 half-edges). from_indexed, reserve and split throw before going past it. Vertex
@@ -30,6 +41,7 @@
 // outgoing half-edges of a vertex are visited CCW by ccw_rotated(h) = twin(prev(h)).
 #pragma once
 
+#include <cassert>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -62,7 +74,7 @@ struct FlipRecord {
     Halfedge h;               // the flipped half-edge (same slot before and after)
     Halfedge old_out_from;    // outgoing half-edge stored at the old edge's endpoints before
     Halfedge old_out_to;
-    Halfedge old_face_he[2];  // half-edge stored at face(h) and face(twin(h)) before
+    Halfedge old_face_he[2];  // half-edge stored at face(h) and face(twin(h)) before (with faces)
 };
 
 class Mesh {
@@ -86,7 +98,7 @@ public:
     // Slot counts (alive + free): every handle index is below these; per-element arrays kept by
     // an algorithm are sized by them.
     std::uint32_t vertex_capacity() const { return std::uint32_t(vpos_.size()); }
-    std::uint32_t face_capacity() const { return std::uint32_t(fhe_.size()); }
+    std::uint32_t face_capacity() const { return std::uint32_t(fhe_.size()); }  // 0 without faces
     std::uint32_t edge_capacity() const { return std::uint32_t(he_.size() / 2); }
     std::uint32_t halfedge_capacity() const { return std::uint32_t(he_.size()); }
     // Reserve room for n vertices (and the ~2n faces and ~3n edges that come with them).
@@ -103,9 +115,21 @@ public:
         if (halfedges > kMaxHalfedges) throw_too_many_halfedges(halfedges, what);
     }
 
+    // The face index (see the top of this file). A new mesh has it.
+    bool has_faces() const { return faces_; }
+    // Frees the face index: the Face handles are gone until build_faces(). O(1).
+    void drop_faces();
+    // Makes the face index, when there is none: faces numbered 0 .. n_faces() - 1 in the order
+    // of their smallest half-edge, which is also the one halfedge(Face) returns; no free face
+    // slots. O(half-edges).
+    void build_faces();
+
     // Dead or alive: the top bit of the slot's own connectivity field (one load and a mask).
     bool is_removed(Vertex v) const { return (vhe_[v.idx] & kFreeBit) != 0; }
-    bool is_removed(Face f) const { return (fhe_[f.idx] & kFreeBit) != 0; }
+    bool is_removed(Face f) const {  // needs faces
+        assert(faces_);
+        return (fhe_[f.idx] & kFreeBit) != 0;
+    }
     bool is_removed(Edge e) const { return (he_[2 * e.idx].next & kFreeBit) != 0; }
     bool is_removed(Halfedge h) const { return (he_[h.idx & ~1u].next & kFreeBit) != 0; }
 
@@ -117,9 +141,22 @@ public:
     static Halfedge twin(Halfedge h) { return Halfedge(h.idx ^ 1u); }
     static Edge edge(Halfedge h) { return Edge(h.idx >> 1); }
     static Halfedge halfedge(Edge e, int i) { return Halfedge((e.idx << 1) | std::uint32_t(i)); }
-    Face face(Halfedge h) const { return Face(he_face_[h.idx]); }
+    Face face(Halfedge h) const {  // needs faces
+        assert(faces_);
+        return Face(he_face_[h.idx]);
+    }
     Halfedge halfedge(Vertex v) const { return Halfedge(vhe_[v.idx]); }  // an outgoing one
-    Halfedge halfedge(Face f) const { return Halfedge(fhe_[f.idx]); }
+    Halfedge halfedge(Face f) const {  // needs faces
+        assert(faces_);
+        return Halfedge(fhe_[f.idx]);
+    }
+    // The smallest of the three half-edges of h's triangle: the triangle's name without the face
+    // index (right after build_faces(), halfedge(face(h)) is this one).
+    Halfedge first_of_triangle(Halfedge h) const {
+        const std::uint32_t a = h.idx, b = he_[a].next, c = he_[b].next;
+        const std::uint32_t ab = a < b ? a : b;
+        return Halfedge(ab < c ? ab : c);
+    }
     // Next outgoing half-edge of from(h), counter-clockwise / clockwise.
     Halfedge ccw_rotated(Halfedge h) const { return twin(prev(h)); }
     Halfedge cw_rotated(Halfedge h) const { return next(twin(h)); }
@@ -161,6 +198,10 @@ public:
     Vec3 face_normal(Face f) const;       // unit (zero for a degenerate face)
     float face_area(Face f) const;
     Vec3 face_centroid(Face f) const;
+    // The centroid of h's triangle, with or without the face index: summed from its smallest
+    // half-edge, so the same bits from any of the three (and the same as face_centroid(face(h))
+    // after build_faces()).
+    Vec3 triangle_centroid(Halfedge h) const;
     Vec3 vertex_normal(Vertex v) const;   // area-weighted mean of the incident face normals, unit
 
     // ---- topology operations ----------------------------------------------------------------
@@ -205,8 +246,10 @@ public:
     }
 
     // ---- export -----------------------------------------------------------------------------
-    // Dense arrays of the alive elements. Vertex order follows the slot order; `vertex_map` (if
-    // given) receives, per slot, the dense index or kInvalidIndex for a free slot.
+    // Dense arrays of the alive elements. Vertex order follows the slot order, face order the
+    // face slots (without the face index, the order of each triangle's smallest half-edge, which
+    // build_faces() would give them); `vertex_map` (if given) receives, per slot, the dense index
+    // or kInvalidIndex for a free slot.
     IndexedMesh to_indexed(std::vector<std::uint32_t>* vertex_map = nullptr) const;
 
     // Raw access for the validator and for bit-for-bit comparisons in tests.
@@ -260,6 +303,7 @@ private:
     // Free-list heads, marked like the links (slot | kFreeBit, or kInvalidIndex when empty).
     std::uint32_t vfree_ = kInvalidIndex, ffree_ = kInvalidIndex, efree_ = kInvalidIndex;
     std::uint32_t n_vertices_ = 0, n_faces_ = 0, n_edges_ = 0;
+    bool faces_ = true;  // he_face_, fhe_ and ffree_ are kept
 };
 
 }  // namespace nmesh

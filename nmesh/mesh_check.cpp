@@ -46,7 +46,7 @@ struct Checker {
         for (std::uint32_t i = 0; i < m.face_capacity(); ++i) f += !m.is_removed(Face(i));
         for (std::uint32_t i = 0; i < m.edge_capacity(); ++i) e += !m.is_removed(Edge(i));
         if (v != m.n_vertices()) return fail("vertex count ", m.n_vertices(), " but ", v, " alive slots");
-        if (f != m.n_faces()) return fail("face count ", m.n_faces(), " but ", f, " alive slots");
+        if (m.has_faces() && f != m.n_faces()) return fail("face count ", m.n_faces(), " but ", f, " alive slots");
         if (e != m.n_edges()) return fail("edge count ", m.n_edges(), " but ", e, " alive slots");
         return free_list("vertex", m.free_vertex_head(), m.vertex_capacity(), v,
                          [&](std::uint32_t s) { return m.is_removed(Vertex(s)); },
@@ -63,15 +63,17 @@ struct Checker {
         for (std::uint32_t i = 0; i < m.halfedge_capacity(); ++i) {
             const Halfedge h(i);
             if (m.is_removed(h)) continue;
-            const std::uint32_t to = m.to(h).idx, nx = m.next(h).idx, f = m.face(h).idx;
+            // Without the face index (Mesh::drop_faces) the next cycles are checked alone.
+            const bool faces = m.has_faces();
+            const std::uint32_t to = m.to(h).idx, nx = m.next(h).idx, f = faces ? m.face(h).idx : 0;
             if (!vertex_ok(to)) return fail("half-edge ", i, " points to vertex ", to, ", which is not alive");
             if (!halfedge_ok(nx)) return fail("half-edge ", i, ": next ", nx, " is not alive");
-            if (!face_ok(f)) return fail("half-edge ", i, ": face ", f, " is not alive");
+            if (faces && !face_ok(f)) return fail("half-edge ", i, ": face ", f, " is not alive");
             if (nx == i) return fail("half-edge ", i, " is its own next");
             const Halfedge n2 = m.next(Halfedge(nx));
             if (!halfedge_ok(n2.idx) || m.next(n2).idx != i)
                 return fail("half-edge ", i, ": the next cycle does not close after 3 steps");
-            if (m.face(Halfedge(nx)).idx != f || m.face(n2).idx != f)
+            if (faces && (m.face(Halfedge(nx)).idx != f || m.face(n2).idx != f))
                 return fail("half-edge ", i, ": its next cycle spans several faces");
             const std::uint32_t origin = m.to(n2).idx;  // target of prev
             if (m.to(Mesh::twin(h)).idx != origin)
@@ -83,6 +85,7 @@ struct Checker {
     }
 
     bool faces() {
+        // Without the face index (face_capacity() 0) only the count is checked: 3F half-edges.
         for (std::uint32_t f = 0; f < m.face_capacity(); ++f) {
             if (m.is_removed(Face(f))) continue;
             const std::uint32_t h = m.halfedge(Face(f)).idx;

@@ -23,6 +23,8 @@ struct ManifoldCheck {
 //     rotation cycle; its valence is at least 3 and its neighbours are distinct (no duplicate
 //     edges);
 //   - the mesh is connected and V - E + F = 2.
+// A mesh without its face index (Mesh::drop_faces) is checked the same way except for what
+// names faces: its triangles are its next() cycles.
 // O(V + E + F) time and memory.
 ManifoldCheck check_manifold(const Mesh& mesh);
 

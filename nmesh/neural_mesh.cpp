@@ -26,6 +26,9 @@ NeuralMesh::NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bound
     // circumradius of a quarter of the box's diagonal: inside the data for a closed scan, and
     // large enough that all four vertices win signals from the start.
     mesh_ = Mesh::tetrahedron(bounds.center(), float(bounds.diagonal() * 0.25));
+    // The loop names no faces (the swap finds a triangle by its half-edges), so the mesh keeps
+    // no face index while it learns: 32 of its 96 bytes per vertex (Mesh::drop_faces).
+    mesh_.drop_faces();
     const std::uint32_t room = params.target_vertices + kReserveSlack;
     mesh_.reserve(room);
     grid_.reserve(room);
@@ -356,14 +359,15 @@ void NeuralMesh::remove_inactive() {
     }
 }
 
-// Eq. (9): DM(t, X), the distance from the centroid of t to the nearest cloud point.
-float NeuralMesh::face_deviation(Face f) const {
-    return std::sqrt(cloud_index_->nearest_squared_distance(mesh_.face_centroid(f)));
+// Eq. (9): DM(t, X), the distance from the centroid of t, the triangle of half-edge h, to the
+// nearest cloud point (the same for each of t's three half-edges: Mesh::triangle_centroid).
+float NeuralMesh::face_deviation(Halfedge h) const {
+    return std::sqrt(cloud_index_->nearest_squared_distance(mesh_.triangle_centroid(h)));
 }
 
 // Eq. (8): Dev(e) = DM(t1, X) + DM(t2, X) for the two triangles of e.
 float NeuralMesh::edge_deviation(Halfedge h) const {
-    return face_deviation(mesh_.face(h)) + face_deviation(mesh_.face(Mesh::twin(h)));
+    return face_deviation(h) + face_deviation(Mesh::twin(h));
 }
 
 // Section 4, after an edge collapse with remaining vertex v:
@@ -378,9 +382,9 @@ void NeuralMesh::swap_around(Vertex v) {
     swap_dm_.clear();
     mesh_.for_each_outgoing(v, [&](Halfedge h) {
         swap_ring_.push_back(h);
-        swap_dm_.push_back(face_deviation(mesh_.face(h)));
+        swap_dm_.push_back(face_deviation(h));
     });
-    // Edge i lies between face(h_i) and face(h_{i-1}): the faces of consecutive outgoing
+    // Edge i lies between the triangles of h_i and h_{i-1}: the triangles of consecutive outgoing
     // half-edges around v share the edge between them.
     const std::size_t n = swap_ring_.size();
     std::size_t worst = 0;

@@ -62,6 +62,8 @@ public:
     // Time each phase into Statistics::seconds_* from now on (costs a clock read per phase).
     void set_profiling(bool on) { profiling_ = on; }
 
+    // The mesh as learnt so far. It has no face index (Mesh::has_faces): Mesh::build_faces() on
+    // a copy, or on the mesh taken out, gives one.
     const Mesh& mesh() const { return mesh_; }
     // Moves the mesh out, for when the learning is over: the engine is then only fit to be
     // destroyed (which frees its grid, activity index, ring cache and cloud index before the
@@ -91,7 +93,7 @@ private:
     void update(Vertex w, const Vec3& x, const std::uint32_t* ring, std::uint32_t k, bool prefetched);
     const std::uint32_t* ring_of(Vertex v, std::vector<std::uint32_t>& scratch, std::uint32_t& count);
     const std::uint32_t* walk_ring(Vertex v, std::vector<std::uint32_t>& scratch, std::uint32_t& count);
-    float face_deviation(Face f) const;
+    float face_deviation(Halfedge h) const;
     float edge_deviation(Halfedge h) const;
     void set_position(Vertex v, const Vec3& p);
     void adapt_profiled();

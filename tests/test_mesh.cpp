@@ -415,6 +415,14 @@ TEST_CASE("the validator names the first violation") {
         expect_error(m, "vertex count");
     }
     {
+        Mesh m = icosahedron();  // without the face index, a broken next cycle is still found
+        m.drop_faces();
+        REQUIRE(check_manifold(m).ok);
+        const std::uint32_t n = A::next(m, 0);
+        A::next(m, n) = 0;
+        expect_error(m, "half-edge");
+    }
+    {
         Mesh m = icosahedron();  // a free list that points at an alive slot
         A::set_free_vertex_head(m, 2);
         CHECK(m.free_vertex_head() == 2);
@@ -438,4 +446,59 @@ TEST_CASE("the validator names the first violation") {
                            {0, 5, 4}, {0, 6, 5}, {0, 4, 6}, {4, 5, 8}, {5, 6, 8}, {6, 4, 8}};
         CHECK_THROWS_WITH_AS(Mesh::from_indexed(pinch), doctest::Contains("one-ring"), InputError);
     }
+}
+
+TEST_CASE("the face index: dropped and built again") {
+    Mesh m = icosahedron();
+    // Operations with faces first, so that face slots are reused and no longer start at their
+    // smallest half-edge.
+    REQUIRE(m.try_flip(m.find_halfedge(Vertex(0), Vertex(5))));
+    const Vertex a = m.split(m.halfedge(Vertex(3)), m.ccw_rotated(m.ccw_rotated(m.halfedge(Vertex(3)))), {0.1f, 0.2f, 0.3f});
+    REQUIRE(m.try_collapse(m.find_halfedge(a, Vertex(3))));
+    REQUIRE(check_manifold(m).ok);
+    // The centroid from any of a triangle's half-edges: the same bits.
+    for (std::uint32_t f = 0; f < m.face_capacity(); ++f) {
+        if (m.is_removed(Face(f))) continue;
+        const Halfedge h = m.halfedge(Face(f));
+        const Vec3 c = m.triangle_centroid(h);
+        CHECK(m.triangle_centroid(m.next(h)) == c);
+        CHECK(m.triangle_centroid(m.prev(h)) == c);
+        CHECK(norm(c - m.face_centroid(Face(f))) <= 1e-6f);
+        const Halfedge first = m.first_of_triangle(h);
+        CHECK(first.idx == std::min({h.idx, m.next(h).idx, m.prev(h).idx}));
+    }
+
+    Mesh bare = m;
+    bare.drop_faces();
+    CHECK_FALSE(bare.has_faces());
+    CHECK(bare.face_capacity() == 0);
+    CHECK(bare.n_faces() == m.n_faces());
+    CHECK(check_manifold(bare).ok);
+    // The same triangles, listed by smallest half-edge.
+    const IndexedMesh listed = bare.to_indexed();
+    CHECK(listed.positions == m.to_indexed().positions);
+    CHECK(nmesh::test::face_set(Mesh::from_indexed(listed)) == nmesh::test::face_set(m));
+
+    Mesh built = bare;
+    built.build_faces();
+    CHECK(built.has_faces());
+    CHECK(check_manifold(built).ok);
+    CHECK(built.face_capacity() == m.n_faces());  // dense: no free face slots
+    CHECK(built.free_face_head() == kInvalidIndex);
+    // Numbered in the order of their smallest half-edge, each starting at it.
+    for (std::uint32_t f = 0; f < built.face_capacity(); ++f) {
+        const Halfedge h = built.halfedge(Face(f));
+        CHECK(built.first_of_triangle(h) == h);
+        if (f > 0) CHECK(built.halfedge(Face(f - 1)).idx < h.idx);
+        CHECK(built.face_centroid(Face(f)) == built.triangle_centroid(built.next(h)));
+    }
+    // Building the index changes nothing else, and no output.
+    const IndexedMesh again = built.to_indexed();
+    CHECK(again.positions == listed.positions);
+    CHECK(again.triangles == listed.triangles);
+    Mesh built_twice = built;
+    built_twice.build_faces();  // a no-op with an index
+    CHECK(built_twice.same_arrays(built));
+    // A mesh built from its own output numbers its faces the same way.
+    CHECK(Mesh::from_indexed(again).to_indexed().triangles == again.triangles);
 }

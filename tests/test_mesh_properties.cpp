@@ -301,6 +301,103 @@ TEST_CASE("is_removed and the free lists agree with a brute-force model after ra
     CHECK(flips > 1000);
 }
 
+namespace {
+
+// Every half-edge, edge and vertex field of two meshes, ignoring the face index: a mesh without
+// it must keep the same connectivity, slot for slot, as one with it.
+void require_same_connectivity(const Mesh& with, const Mesh& without, const char* after) {
+    INFO("after " << after);
+    REQUIRE(with.halfedge_capacity() == without.halfedge_capacity());
+    REQUIRE(with.vertex_capacity() == without.vertex_capacity());
+    REQUIRE((with.n_vertices() == without.n_vertices() && with.n_edges() == without.n_edges() &&
+             with.n_faces() == without.n_faces()));
+    REQUIRE(with.free_vertex_head() == without.free_vertex_head());
+    REQUIRE(with.free_edge_head() == without.free_edge_head());
+    for (std::uint32_t h = 0; h < with.halfedge_capacity(); ++h) {
+        REQUIRE(with.is_removed(Halfedge(h)) == without.is_removed(Halfedge(h)));
+        if (with.is_removed(Halfedge(h))) continue;
+        REQUIRE((with.to(Halfedge(h)) == without.to(Halfedge(h)) && with.next(Halfedge(h)) == without.next(Halfedge(h))));
+    }
+    for (std::uint32_t v = 0; v < with.vertex_capacity(); ++v) {
+        REQUIRE(with.is_removed(Vertex(v)) == without.is_removed(Vertex(v)));
+        if (!with.is_removed(Vertex(v))) REQUIRE(with.halfedge(Vertex(v)) == without.halfedge(Vertex(v)));
+    }
+}
+
+}  // namespace
+
+TEST_CASE("without the face index, random operations keep the same connectivity and a valid manifold") {
+    std::uint64_t ops = 0, builds = 0;
+    for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+        CAPTURE(seed);
+        std::mt19937_64 rng(seed);
+        Mesh with = seed % 2 ? Mesh::tetrahedron() : nmesh::test::icosahedron();
+        Mesh without = with;
+        without.drop_faces();
+        auto below = [&](std::uint32_t n) { return std::uint32_t(rng() % n); };
+        auto random_halfedge = [&] {
+            for (;;) {
+                const Halfedge h(below(with.halfedge_capacity()));
+                if (!with.is_removed(h)) return h;
+            }
+        };
+        for (int cycle = 0; cycle < 4; ++cycle) {
+            for (const bool growing : {true, false}) {
+                while (growing ? with.n_vertices() < 120 : with.n_vertices() > 6) {
+                    const std::uint32_t r = below(100);
+                    const char* what = "flip";
+                    if (r < (growing ? 45u : 10u)) {
+                        what = "split";
+                        const Halfedge to_c = random_halfedge();
+                        Halfedge to_d = to_c;
+                        for (std::uint32_t i = 1 + below(with.valence(with.from(to_c)) - 1); i > 0; --i) to_d = with.ccw_rotated(to_d);
+                        const Vec3 p{float(below(1000)), 0.5f, -0.25f};
+                        REQUIRE(with.split(to_c, to_d, p) == without.split(to_c, to_d, p));
+                    } else if (r < 75) {
+                        what = "collapse";
+                        const Halfedge h = random_halfedge();
+                        REQUIRE(with.can_collapse(h) == without.can_collapse(h));
+                        if (with.can_collapse(h)) {
+                            with.collapse(h);
+                            without.collapse(h);
+                        }
+                    } else {
+                        const Halfedge h = random_halfedge();
+                        REQUIRE(with.can_flip(h) == without.can_flip(h));
+                        if (with.can_flip(h)) {
+                            with.flip(h);
+                            const Mesh before = without;
+                            const FlipRecord rec = without.flip(h);
+                            if (below(4) == 0) {  // undone and done again: every array restored
+                                without.unflip(rec);
+                                REQUIRE(without.same_arrays(before));
+                                without.flip(h);
+                            }
+                        }
+                    }
+                    ++ops;
+                    require_same_connectivity(with, without, what);
+                    const ManifoldCheck c = check_manifold(without);
+                    if (!c.ok) FAIL("invalid mesh without faces after " << what << ": " << c.error);
+                    if (below(16) == 0) {
+                        // The index built at any time: valid, and the same triangles as tracked.
+                        Mesh built = without;
+                        built.build_faces();
+                        REQUIRE(check_manifold(built).ok);
+                        REQUIRE(nmesh::test::face_set(built) == nmesh::test::face_set(with));
+                        REQUIRE(built.to_indexed().triangles == without.to_indexed().triangles);
+                        ++builds;
+                    }
+                }
+            }
+        }
+    }
+    std::printf("face index: %llu operations without it, %llu builds checked\n", (unsigned long long)ops,
+                (unsigned long long)builds);
+    CHECK(ops > 2000);
+    CHECK(builds > 100);
+}
+
 TEST_CASE("random split/collapse/flip sequences keep a valid closed manifold") {
     Tally tally;
     for (std::uint64_t seed = 1; seed <= 24; ++seed) {

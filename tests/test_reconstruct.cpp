@@ -109,8 +109,9 @@ TEST_CASE("steps 2-4 move the nearest vertex by eq. (2) and its ring by eq. (3)-
                     mean += before_smoothing[u.idx];
                     count += 1.0f;
                 });
-                m.for_each_face_around(v, [&](Face f) {
-                    const Halfedge h = m.halfedge(f);
+                // Each triangle around v (the learning mesh has no face index: its triangles are
+                // the next() cycles of v's outgoing half-edges).
+                m.for_each_outgoing(v, [&](Halfedge h) {
                     const Vec3 a = before_smoothing[m.to(h).idx], b = before_smoothing[m.to(m.next(h)).idx],
                                c = before_smoothing[m.to(m.next(m.next(h))).idx];
                     normal += cross(b - a, c - a);
