@@ -250,17 +250,20 @@ TEST_CASE("VertexGrid: vertices and queries on cell faces and at the ring-2 dist
     // The stop after ring 1: a query just inside the lower x face of its cell, a little more than
     // a cell above the plane (the plane is in ring 1, at distance d), and one more vertex at the
     // query's height, a little more than a cell away along -x: in ring 2, yet nearer than d.
+    // The extra vertex takes an id none of the 2000 has (the lattice may have moved fewer).
     const double e = h * 1e-4;
+    const std::uint32_t extra = 2000;
     for (int k = 0; k < 50; ++k) {
         const Vec3 below = ref.position[rng.below(id)];  // a lattice vertex: on x and z faces
         const Vec3 q{float(below.x + e), below.y, float(below.z + h + 10.0 * e)};
         const Vec3 side{float(q.x - h - e), q.y, q.z};
-        grid.insert(id, side);
-        ref.insert(id, side);
-        REQUIRE(ref.nearest(q) == id);
-        REQUIRE(grid.nearest(q) == id);
-        grid.remove(id);
-        ref.remove(id);
+        REQUIRE_FALSE(grid.contains(extra));
+        grid.insert(extra, side);
+        ref.insert(extra, side);
+        REQUIRE(ref.nearest(q) == extra);
+        REQUIRE(grid.nearest(q) == extra);
+        grid.remove(extra);
+        ref.remove(extra);
     }
 }
 
