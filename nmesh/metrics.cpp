@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -458,6 +459,82 @@ void check_inputs(const std::vector<Vec3>& points, const IndexedMesh& mesh) {
                                  std::to_string(v) + " of " + std::to_string(mesh.positions.size()));
 }
 
+// A triangle by the positions of its corners.
+using Corners = std::array<Vec3, 3>;
+
+bool position_less(const Vec3& a, const Vec3& b) {
+    if (a.x != b.x) return a.x < b.x;
+    if (a.y != b.y) return a.y < b.y;
+    return a.z < b.z;
+}
+
+// The triangles as corner positions in an order that depends only on the surface: each rotated
+// to start at its smallest corner (x, then y, then z; the orientation kept), then sorted by
+// their corners in that order. Another order of the triangles, another first corner or another
+// numbering of the vertices give the same list.
+std::vector<Corners> surface_order(const IndexedMesh& mesh) {
+    std::vector<Corners> tris;
+    tris.reserve(mesh.triangles.size());
+    for (const auto& t : mesh.triangles) {
+        Corners c{mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
+        int first = 0;
+        for (int i = 1; i < 3; ++i)
+            if (position_less(c[std::size_t(i)], c[std::size_t(first)])) first = i;
+        std::rotate(c.begin(), c.begin() + first, c.end());
+        tris.push_back(c);
+    }
+    std::sort(tris.begin(), tris.end(), [](const Corners& a, const Corners& b) {
+        return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end(), position_less);
+    });
+    return tris;
+}
+
+// The largest distance from the surface to the cloud, found to within `tol` of the true value
+// by branch and bound over each triangle. For a piece of a triangle with centroid g, corners c_i
+// and q the cloud point nearest to g, every point x of the piece is within max_i |c_i - q| of q
+// (|x - q| is convex in x, so it peaks at a corner), and within d(g) + max_i |c_i - g| of the
+// cloud (the distance to the cloud is 1-Lipschitz); the smaller bound is taken. A piece whose
+// bound passes the largest distance found so far by more than tol is cut in four at its edge
+// midpoints. A piece of circumradius at most tol never is (its Lipschitz bound is within tol of
+// its centroid's distance), so the cuts end. `found`: a distance already measured on the
+// surface (the samples' largest). Safety valve: after kMaxPiecesPerTriangle pieces per triangle
+// on average (plus a fixed allowance), no piece is cut any more and the largest distance found
+// is returned; on a surface at a near-constant distance from a sparse cloud the cuts could
+// otherwise run to (area / tol^2) pieces.
+double surface_to_cloud_max(const std::vector<Corners>& tris, const std::vector<Vec3>& points, const PointGrid& cloud,
+                            double found, double tol) {
+    constexpr std::size_t kMaxPiecesPerTriangle = 256;
+    const std::size_t budget = kMaxPiecesPerTriangle * tris.size() + (std::size_t(1) << 22);
+    struct Piece {
+        Vector3d a, b, c;
+    };
+    std::vector<Piece> stack;
+    std::size_t pieces = 0;
+    double best = found;
+    for (const Corners& t : tris) {
+        stack.push_back({to_eigen(t[0]), to_eigen(t[1]), to_eigen(t[2])});
+        while (!stack.empty()) {
+            const Piece s = stack.back();
+            stack.pop_back();
+            ++pieces;
+            const Vector3d g = (s.a + s.b + s.c) / 3.0;
+            const NearestPoint n = cloud.find_nearest(Vec3(float(g.x()), float(g.y()), float(g.z())));
+            const double d = std::sqrt(double(n.squared_distance));
+            best = std::max(best, d);
+            const Vector3d q = to_eigen(points[n.index]);
+            const double lipschitz = d + std::sqrt(std::max({(s.a - g).squaredNorm(), (s.b - g).squaredNorm(), (s.c - g).squaredNorm()}));
+            const double convex = std::sqrt(std::max({(s.a - q).squaredNorm(), (s.b - q).squaredNorm(), (s.c - q).squaredNorm()}));
+            if (std::min(lipschitz, convex) <= best + tol || pieces > budget) continue;
+            const Vector3d ab = (s.a + s.b) * 0.5, bc = (s.b + s.c) * 0.5, ca = (s.c + s.a) * 0.5;
+            stack.push_back({s.a, ab, ca});
+            stack.push_back({ab, s.b, bc});
+            stack.push_back({ca, bc, s.c});
+            stack.push_back({ab, bc, ca});
+        }
+    }
+    return best;
+}
+
 std::vector<Vec3> centroids(const IndexedMesh& mesh) {
     std::vector<Vec3> c;
     c.reserve(mesh.triangles.size());
@@ -590,15 +667,17 @@ QualityReport evaluate(const std::vector<Vec3>& points, const IndexedMesh& mesh,
 
     // Surface-to-cloud. Systematic sampling by area: the samples sit at evenly spaced positions,
     // with a random offset, along the triangles' cumulated areas, so each is uniform over the
-    // surface and their spread is even; within its triangle each sample is uniform.
+    // surface and their spread is even; within its triangle each sample is uniform. The
+    // triangles are taken in an order that depends on the surface only (surface_order), so that
+    // the same triangles listed otherwise give the same samples.
     {
         const std::size_t count = options.surface_samples;
-        std::vector<double> cumulative(mesh.triangles.size());
+        const std::vector<Corners> tris = surface_order(mesh);
+        std::vector<double> cumulative(tris.size());
         double total = 0.0;
-        for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
-            const auto& t = mesh.triangles[f];
-            const Vector3d a = to_eigen(mesh.positions[t[0]]);
-            const Vector3d n = (to_eigen(mesh.positions[t[1]]) - a).cross(to_eigen(mesh.positions[t[2]]) - a);
+        for (std::size_t f = 0; f < tris.size(); ++f) {
+            const Vector3d a = to_eigen(tris[f][0]);
+            const Vector3d n = (to_eigen(tris[f][1]) - a).cross(to_eigen(tris[f][2]) - a);
             total += 0.5 * n.norm();
             cumulative[f] = total;
         }
@@ -612,20 +691,22 @@ QualityReport evaluate(const std::vector<Vec3>& points, const IndexedMesh& mesh,
                 const double at = (offset + double(i)) / double(count) * total;
                 while (f + 1 < cumulative.size() && cumulative[f] <= at) ++f;
             } else {  // every triangle has zero area: take them in turn
-                f = i % mesh.triangles.size();
+                f = i % tris.size();
             }
             const double root = std::sqrt(unit_uniform(rng)), w = unit_uniform(rng);
-            const auto& t = mesh.triangles[f];
-            const Vector3d q = (1.0 - root) * to_eigen(mesh.positions[t[0]]) +
-                               root * (1.0 - w) * to_eigen(mesh.positions[t[1]]) +
-                               root * w * to_eigen(mesh.positions[t[2]]);
+            const Corners& t = tris[f];
+            const Vector3d q = (1.0 - root) * to_eigen(t[0]) + root * (1.0 - w) * to_eigen(t[1]) +
+                               root * w * to_eigen(t[2]);
             const Vec3 sample(float(q.x()), float(q.y()), float(q.z()));
             const double d = std::sqrt(double(cloud.nearest_squared_distance(sample)));
             sum += d;
             worst = std::max(worst, d);
         }
         r.s2p_mean = sum / double(count);
-        r.s2p_max = worst;
+        // The largest distance, exact to within 1e-5 of the larger of the cloud's and the mesh's
+        // bounding-box diagonals, the samples' largest as the starting point.
+        const double extent = std::max(r.bbox_diagonal, bounding_box(mesh.positions).diagonal());
+        r.s2p_max = surface_to_cloud_max(tris, points, cloud, worst, 1e-5 * extent);
     }
     r.hausdorff = std::max(r.p2s_max, r.s2p_max);
 
