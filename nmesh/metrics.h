@@ -7,8 +7,11 @@
 //                      distance to the nearest triangle centroid.
 //   point-to-surface   each cloud point to the nearest point of the surface (exact point-triangle
 //                      distance): mean, RMS, max.
-//   surface-to-cloud   points sampled uniformly by area on the surface, each to the nearest cloud
-//                      point: mean, max. An estimate: the max is a lower bound of the true one.
+//   surface-to-cloud   the surface to the nearest cloud point: the mean over points sampled
+//                      uniformly by area, and the max, exact to within 1e-5 of the larger of the
+//                      cloud's and the mesh's bounding-box diagonals (branch and bound over each
+//                      triangle). Both depend on the triangles' corners only, not on the order
+//                      they are listed in, their first corners or the vertex numbering.
 //   Hausdorff          max(point-to-surface max, surface-to-cloud max).
 //   topology           closed, manifold, Euler characteristic, genus, components,
 //                      self-intersections, degenerate triangles.
@@ -73,8 +76,10 @@ struct QualityReport {
 };
 
 // Computes every metric. Cost for n points, F triangles and S samples: O(n log F + S + F log F),
-// plus the pairs of triangles whose boxes overlap — about 0.3 s for the bunny scan (36k points)
-// against its 69k-triangle mesh.
+// plus the pairs of triangles whose boxes overlap, plus the pieces the surface-to-cloud maximum
+// cuts its triangles into (few: only near the farthest parts of the surface; at most 256 per
+// triangle, beyond which it returns the largest distance found so far) — about 0.3 s for the
+// bunny scan (36k points) against its 69k-triangle mesh.
 // Throws InputError if `points` is empty, if a point or a mesh vertex has a NaN or infinite
 // coordinate, if the mesh has no triangle, or if a triangle refers to a vertex that does not
 // exist; ParameterError if options.surface_samples is 0.
