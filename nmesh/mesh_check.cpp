@@ -64,16 +64,16 @@ struct Checker {
             const Halfedge h(i);
             if (m.is_removed(h)) continue;
             // Without the face index (Mesh::drop_faces) the next cycles are checked alone.
-            const bool faces = m.has_faces();
-            const std::uint32_t to = m.to(h).idx, nx = m.next(h).idx, f = faces ? m.face(h).idx : 0;
+            const bool named = m.has_faces();
+            const std::uint32_t to = m.to(h).idx, nx = m.next(h).idx, f = named ? m.face(h).idx : 0;
             if (!vertex_ok(to)) return fail("half-edge ", i, " points to vertex ", to, ", which is not alive");
             if (!halfedge_ok(nx)) return fail("half-edge ", i, ": next ", nx, " is not alive");
-            if (faces && !face_ok(f)) return fail("half-edge ", i, ": face ", f, " is not alive");
+            if (named && !face_ok(f)) return fail("half-edge ", i, ": face ", f, " is not alive");
             if (nx == i) return fail("half-edge ", i, " is its own next");
             const Halfedge n2 = m.next(Halfedge(nx));
             if (!halfedge_ok(n2.idx) || m.next(n2).idx != i)
                 return fail("half-edge ", i, ": the next cycle does not close after 3 steps");
-            if (faces && (m.face(Halfedge(nx)).idx != f || m.face(n2).idx != f))
+            if (named && (m.face(Halfedge(nx)).idx != f || m.face(n2).idx != f))
                 return fail("half-edge ", i, ": its next cycle spans several faces");
             const std::uint32_t origin = m.to(n2).idx;  // target of prev
             if (m.to(Mesh::twin(h)).idx != origin)
