@@ -274,15 +274,13 @@ float Mesh::face_area(Face f) const {
     return 0.5f * norm(cross(position(to(h)) - p0, position(to(next(h))) - p0));
 }
 
-Vec3 Mesh::face_centroid(Face f) const {
-    const Halfedge h = halfedge(f);
+Vec3 Mesh::centroid_from(Halfedge h) const {
     return (position(from(h)) + position(to(h)) + position(to(next(h)))) * (1.0f / 3.0f);
 }
 
-Vec3 Mesh::triangle_centroid(Halfedge h) const {
-    const Halfedge first = first_of_triangle(h);
-    return (position(from(first)) + position(to(first)) + position(to(next(first)))) * (1.0f / 3.0f);
-}
+Vec3 Mesh::face_centroid(Face f) const { return centroid_from(halfedge(f)); }
+
+Vec3 Mesh::triangle_centroid(Halfedge h) const { return centroid_from(first_of_triangle(h)); }
 
 Vec3 Mesh::vertex_normal(Vertex v) const {
     // The cross product of a face's two edges at v is twice its area times its unit normal, so
@@ -385,7 +383,7 @@ void Mesh::collapse(Halfedge h) {
     const Halfedge hn = next(h), hp = next(hn);
     const Halfedge t = twin(h), tn = next(t), tp = next(tn);
     const Vertex a = from(h), b = to(h), c = to(hn), d = to(tn);
-    const Face f0 = faces_ ? face(h) : Face(), f1 = faces_ ? face(t) : Face();
+    const Face f0 = face_if_any(h), f1 = face_if_any(t);
     const Halfedge on = twin(hn), op = twin(tp);
 
     // Everything that pointed to a now points to b.
@@ -427,7 +425,7 @@ FlipRecord Mesh::flip(Halfedge h) {
     const Halfedge hn = next(h), hp = next(hn);
     const Halfedge t = twin(h), tn = next(t), tp = next(tn);
     const Vertex a = from(h), b = to(h);
-    const Face f0 = faces_ ? face(h) : Face(), f1 = faces_ ? face(t) : Face();
+    const Face f0 = face_if_any(h), f1 = face_if_any(t);
     FlipRecord r{h, halfedge(a), halfedge(b), {}};
     if (faces_) r.old_face_he[0] = halfedge(f0), r.old_face_he[1] = halfedge(f1);
 
@@ -449,7 +447,7 @@ void Mesh::unflip(const FlipRecord& r) {
     const Halfedge h = r.h, t = twin(h);
     const Halfedge x = next(h), y = next(x);
     const Halfedge u = next(t), w = next(u);
-    const Face f0 = faces_ ? face(h) : Face(), f1 = faces_ ? face(t) : Face();
+    const Face f0 = face_if_any(h), f1 = face_if_any(t);
     he_[h.idx].to = he_[u.idx].to;  // b
     he_[t.idx].to = he_[x.idx].to;  // a
     link_face(f0, h, w, x);

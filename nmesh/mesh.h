@@ -275,6 +275,11 @@ private:
         return link == kInvalidIndex ? kInvalidIndex : link & ~kFreeBit;
     }
     [[noreturn]] static void throw_too_many_halfedges(std::uint64_t halfedges, const char* what);
+    // face(h) with the face index, an invalid handle without it (the operations then skip the
+    // index's updates).
+    Face face_if_any(Halfedge h) const { return faces_ ? Face(he_face_[h.idx]) : Face(); }
+    // The centroid of h's triangle, summed from(h), to(h), to(next(h)) in that order.
+    Vec3 centroid_from(Halfedge h) const;
 
     // New slots come from the free lists first. Their connectivity field is left marked (a
     // reused edge) or set to kInvalidIndex (which has the bit too): the caller links them.

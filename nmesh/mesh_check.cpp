@@ -60,11 +60,11 @@ struct Checker {
     }
 
     bool halfedges() {
+        // Without the face index (Mesh::drop_faces) the next cycles are checked alone.
+        const bool named = m.has_faces();
         for (std::uint32_t i = 0; i < m.halfedge_capacity(); ++i) {
             const Halfedge h(i);
             if (m.is_removed(h)) continue;
-            // Without the face index (Mesh::drop_faces) the next cycles are checked alone.
-            const bool named = m.has_faces();
             const std::uint32_t to = m.to(h).idx, nx = m.next(h).idx, f = named ? m.face(h).idx : 0;
             if (!vertex_ok(to)) return fail("half-edge ", i, " points to vertex ", to, ", which is not alive");
             if (!halfedge_ok(nx)) return fail("half-edge ", i, ": next ", nx, " is not alive");
