@@ -414,12 +414,20 @@ void VertexGrid::visit_near(Query& query) const {
     // candidates are then the 7 cells on those sides, tested nearest first (faces, edges, corner).
     double near2[3], far2[3];
     std::uint64_t step[3];  // to the neighbour on the near side (no carry: the cell is not at an edge)
+    // Without branches: which side is nearer is a coin toss, and a mispredicted branch per axis
+    // cost more than the rest of this loop.
     for (int a = 0; a < 3; ++a) {
         const std::uint64_t unit = std::uint64_t(1) << (kIndexBits * (2 - a));
-        const bool lower = g2[a][0] <= g2[a][2];
+        const std::uint64_t negate = 0 - std::uint64_t(g2[a][0] <= g2[a][2]);  // all ones: lower side
+        step[a] = (unit ^ negate) - negate;
+#if NMESH_SSE2
+        const __m128d lo = _mm_set_sd(g2[a][0]), hi = _mm_set_sd(g2[a][2]);
+        near2[a] = _mm_cvtsd_f64(_mm_min_sd(lo, hi));
+        far2[a] = _mm_cvtsd_f64(_mm_max_sd(lo, hi));
+#else
         near2[a] = std::min(g2[a][0], g2[a][2]);
         far2[a] = std::max(g2[a][0], g2[a][2]);
-        step[a] = lower ? 0 - unit : unit;
+#endif
     }
     if (far2[0] > limit && far2[1] > limit && far2[2] > limit) {
         const std::uint64_t key = x << (2 * kIndexBits) | y << kIndexBits | z;
