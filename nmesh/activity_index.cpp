@@ -82,41 +82,45 @@ void ActivityIndex::move_to_bucket(std::uint32_t v, std::uint64_t old_key, std::
     link_bucket(v, new_key);
 }
 
+// Both without branches on the list's shape: whether a bucket is empty, or a vertex alone in its
+// own, is a coin toss when the counters move from bucket to bucket at every signal, and the
+// mispredictions cost more than the few stores done either way. An empty list is linked as if
+// its head were v itself, and a vertex alone is unlinked as if it had neighbours (itself).
 void ActivityIndex::link_bucket(std::uint32_t v, std::uint64_t key) {
     const std::uint64_t bit = key - epoch_ * kEpochKeys;  // written in this epoch: within the window
     assert(key >= epoch_ * kEpochKeys && bit < kBuckets);
     std::uint32_t& head = bucket_heads_[key % kBuckets];
+    // Selections by mask, which the compiler cannot turn back into branches.
+    const std::uint32_t empty = 0u - std::uint32_t(head == kNone);  // all ones when empty
+    const std::uint32_t next = (v & empty) | (head & ~empty);
+    const std::uint32_t prev = (v & empty) | (nodes_[next].bucket_prev & ~empty);
     Node& n = nodes_[v];
-    if (head == kNone) {
-        head = v;
-        n.bucket_prev = n.bucket_next = v;
-        bucket_bits_[bit / 64] |= std::uint64_t(1) << (bit % 64);
-        summary_bits_[bit / 4096] |= std::uint64_t(1) << (bit / 64 % 64);
-        return;
-    }
-    const std::uint32_t tail = nodes_[head].bucket_prev;
-    n.bucket_prev = tail;
-    n.bucket_next = head;
-    nodes_[tail].bucket_next = v;
-    nodes_[head].bucket_prev = v;
+    n.bucket_prev = prev;
+    n.bucket_next = next;
+    nodes_[prev].bucket_next = v;
+    nodes_[next].bucket_prev = v;
+    head = next;
+    bucket_bits_[bit / 64] |= std::uint64_t(1) << (bit % 64);
+    summary_bits_[bit / 4096] |= std::uint64_t(1) << (bit / 64 % 64);
 }
 
 void ActivityIndex::unlink_bucket(std::uint32_t v, std::uint64_t key) {
     const std::uint64_t base = epoch_ * kEpochKeys;
     if (key < base) return;  // retired: in no list
     std::uint32_t& head = bucket_heads_[key % kBuckets];
-    Node& n = nodes_[v];
-    if (n.bucket_next != v) {
-        nodes_[n.bucket_prev].bucket_next = n.bucket_next;
-        nodes_[n.bucket_next].bucket_prev = n.bucket_prev;
-        if (head == v) head = n.bucket_next;
-        return;
-    }
-    head = kNone;  // v was alone: the bucket empties
+    const Node& n = nodes_[v];
+    const std::uint32_t prev = n.bucket_prev, next = n.bucket_next;
+    const bool alone = next == v;
+    nodes_[prev].bucket_next = next;
+    nodes_[next].bucket_prev = prev;
+    // A head that was v becomes its successor, or kNone (all ones) when v was alone.
+    const std::uint32_t was_head = 0u - std::uint32_t(head == v);
+    head = ((next | (0u - std::uint32_t(alone))) & was_head) | (head & ~was_head);
+    // The bucket empties when v was alone.
     const std::uint64_t bit = key - base;
     std::uint64_t& word = bucket_bits_[bit / 64];
-    word &= ~(std::uint64_t(1) << (bit % 64));
-    if (word == 0) summary_bits_[bit / 4096] &= ~(std::uint64_t(1) << (bit / 64 % 64));
+    word &= ~(std::uint64_t(alone) << (bit % 64));
+    summary_bits_[bit / 4096] &= ~(std::uint64_t(word == 0) << (bit / 64 % 64));
 }
 
 // The scale is divided by 2^kScaleBits, so every stored key drops by kEpochKeys relative to the
