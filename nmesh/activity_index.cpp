@@ -90,7 +90,7 @@ void ActivityIndex::link_bucket(std::uint32_t v, std::uint64_t key) {
     const std::uint64_t bit = key - epoch_ * kEpochKeys;  // written in this epoch: within the window
     assert(key >= epoch_ * kEpochKeys && bit < kBuckets);
     std::uint32_t& head = bucket_heads_[key % kBuckets];
-    // Selections by mask, which the compiler cannot turn back into branches.
+    // Selections by mask (written as conditional expressions, they were compiled into branches).
     const std::uint32_t empty = 0u - std::uint32_t(head == kNone);  // all ones when empty
     const std::uint32_t next = (v & empty) | (head & ~empty);
     const std::uint32_t prev = (v & empty) | (nodes_[next].bucket_prev & ~empty);
