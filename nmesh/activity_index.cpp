@@ -13,6 +13,13 @@ namespace {
 int highest_bit(std::uint64_t word) { return 63 - __builtin_clzll(word); }
 int lowest_bit(std::uint64_t word) { return __builtin_ctzll(word); }
 
+// c ? a : b by a mask, for selections whose condition is a coin toss (written as a conditional
+// expression, they were compiled into branches).
+std::uint32_t pick(bool c, std::uint32_t a, std::uint32_t b) {
+    const std::uint32_t mask = 0u - std::uint32_t(c);
+    return (a & mask) | (b & ~mask);
+}
+
 }  // namespace
 
 ActivityIndex::ActivityIndex(double alpha)
@@ -90,10 +97,9 @@ void ActivityIndex::link_bucket(std::uint32_t v, std::uint64_t key) {
     const std::uint64_t bit = key - epoch_ * kEpochKeys;  // written in this epoch: within the window
     assert(key >= epoch_ * kEpochKeys && bit < kBuckets);
     std::uint32_t& head = bucket_heads_[key % kBuckets];
-    // Selections by mask (written as conditional expressions, they were compiled into branches).
-    const std::uint32_t empty = 0u - std::uint32_t(head == kNone);  // all ones when empty
-    const std::uint32_t next = (v & empty) | (head & ~empty);
-    const std::uint32_t prev = (v & empty) | (nodes_[next].bucket_prev & ~empty);
+    const bool empty = head == kNone;
+    const std::uint32_t next = pick(empty, v, head);
+    const std::uint32_t prev = pick(empty, v, nodes_[next].bucket_prev);
     Node& n = nodes_[v];
     n.bucket_prev = prev;
     n.bucket_next = next;
@@ -113,9 +119,8 @@ void ActivityIndex::unlink_bucket(std::uint32_t v, std::uint64_t key) {
     const bool alone = next == v;
     nodes_[prev].bucket_next = next;
     nodes_[next].bucket_prev = prev;
-    // A head that was v becomes its successor, or kNone (all ones) when v was alone.
-    const std::uint32_t was_head = 0u - std::uint32_t(head == v);
-    head = ((next | (0u - std::uint32_t(alone))) & was_head) | (head & ~was_head);
+    // A head that was v becomes its successor, or kNone when v was alone.
+    head = pick(head == v, pick(alone, kNone, next), head);
     // The bucket empties when v was alone.
     const std::uint64_t bit = key - base;
     std::uint64_t& word = bucket_bits_[bit / 64];
