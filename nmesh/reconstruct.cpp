@@ -28,10 +28,13 @@ void Parameters::validate() const {
     if (cec < 1) bad("cec", "must be at least 1");
     if (!(settle >= 0.0 && settle <= 1e6)) bad("settle", "must be in [0, 1e6], got " + std::to_string(settle));
     if (finish_rounds > 1000) bad("finish_rounds", "must be in [0, 1000], got " + std::to_string(finish_rounds));
+    if (fit_rounds > 100) bad("fit_rounds", "must be in [0, 100], got " + std::to_string(fit_rounds));
+    if (fit_rounds > 0 && !finish) bad("fit_rounds", "needs the finishing stage (finish), which is off");
 }
 
 // One default for the finishing stage's rounds, whether it is run through reconstruct() or alone.
 static_assert(FinishOptions{}.rounds == int(Parameters{}.finish_rounds), "two defaults for the finishing rounds");
+static_assert(FinishOptions{}.fit_rounds == int(Parameters{}.fit_rounds), "two defaults for the centroid fit");
 
 namespace {
 
@@ -218,6 +221,7 @@ Result reconstruct(const PointCloud& cloud, const Parameters& params, const Call
         Mesh mesh = learnt;
         FinishOptions options;
         options.rounds = int(params.finish_rounds);
+        options.fit_rounds = int(params.fit_rounds);
         finish_mesh(mesh, cloud_index->indexed_points(), options, cloud_index.get());
         cloud_index.reset();
         if (mesh.n_vertices() == learnt.n_vertices()) {

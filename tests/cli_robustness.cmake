@@ -322,13 +322,17 @@ foreach(bad
     "--vertices;5000000000;--vertices is too large" "--vertices;1e4;--vertices needs a whole number"
     "--seed;x;--seed needs a whole number" "--snapshots;10,,20;--snapshots needs a whole number"
     "--cvs;99999999999;--cvs is too large" "--finish-rounds;1001;invalid parameter finish_rounds"
-    "--finish-rounds;-1;--finish-rounds needs a whole number")
+    "--finish-rounds;-1;--finish-rounds needs a whole number" "--fit-rounds;101;invalid parameter fit_rounds"
+    "--fit-rounds;-1;--fit-rounds needs a whole number")
   list(GET bad 0 option)
   list(GET bad 1 value)
   list(GET bad 2 regex)
   expect(parameter_${option}_${value} 2 "^nmesh: [^\n]*${regex}[^\n]*\n$"
     ${NMESH} reconstruct ${bunny} -o ${WORK}/out.ply ${option} ${value})
 endforeach()
+# The centroid fit is part of the finishing stage: asking for it without the stage is refused.
+expect(fit_without_finish 2 "^nmesh: [^\n]*fit_rounds: needs the finishing stage[^\n]*\n$"
+  ${NMESH} reconstruct ${bunny} -o ${WORK}/out.ply --fit-rounds 1 --no-finish)
 
 # ---- 3. Interrupted runs ---------------------------------------------------------------------
 # interrupt.sh SIGNAL OUTPUT [OPTION...]: starts a reconstruction of the bunny large enough to

@@ -79,6 +79,19 @@ if(NOT sampled MATCHES "\"index_points_per_vertex\": 2}.*\"indexed_points\": 200
   message(SEND_ERROR "stats.json: --index-points 2 did not index 2000 points")
   math(EXPR failures "${failures} + 1")
 endif()
+# --fit-rounds: recorded in the parameters, and DM(X,T) lower than without the fit (the run above).
+expect(fit_rounds 0 "wrote .*fitted.ply: 1000 vertices"
+  ${NMESH} reconstruct ${DATA} -o ${WORK}/fitted.ply --vertices 1000 --fit-rounds 2 --stats ${WORK}/fitted.json)
+file(READ ${WORK}/fitted.json fitted)
+string(REGEX MATCH "\"dm_x_t\": ([0-9.e+-]+)" unused "${stats}")
+set(dm_default "${CMAKE_MATCH_1}")
+string(REGEX MATCH "\"dm_x_t\": ([0-9.e+-]+)" unused "${fitted}")
+set(dm_fitted "${CMAKE_MATCH_1}")
+if(NOT fitted MATCHES "\"fit_rounds\": 2," OR dm_default STREQUAL "" OR dm_fitted STREQUAL ""
+   OR NOT dm_fitted LESS dm_default)
+  message(SEND_ERROR "--fit-rounds 2: DM(X,T) ${dm_fitted} against ${dm_default} without the fit")
+  math(EXPR failures "${failures} + 1")
+endif()
 expect(quiet 0 "^$" ${NMESH} reconstruct ${DATA} -o ${WORK}/quiet.obj --vertices 200 --quiet)
 expect(eval_json 0 "\"closed\": true.*\"genus\": 0" ${NMESH} eval ${DATA} ${WORK}/mesh.ply --json)
 expect(eval_text 0 "dm_x_t" ${NMESH} eval ${DATA} ${WORK}/quiet.obj)

@@ -461,6 +461,13 @@ TEST_CASE("invalid parameters are refused, naming the parameter") {
     refuses([](Parameters& p) { p.cec = 0; }, "cec");
     refuses([](Parameters& p) { p.settle = -1; }, "settle");
     refuses([](Parameters& p) { p.finish_rounds = 1001; }, "finish_rounds");
+    refuses([](Parameters& p) { p.fit_rounds = 101; }, "fit_rounds");
+    refuses(
+        [](Parameters& p) {
+            p.fit_rounds = 1;
+            p.finish = false;
+        },
+        "fit_rounds: needs the finishing stage");
 }
 
 TEST_CASE("clouds that cannot be reconstructed are refused with a reason") {
