@@ -519,6 +519,28 @@ void require_same_mesh(const IndexedMesh& a, const IndexedMesh& b) {
     CHECK(std::equal(a.positions.begin(), a.positions.end(), b.positions.begin()));
 }
 
+// The engine's own mesh learnt from `cloud` with `p` (numbered as reconstruct() hands it to the
+// finishing stage, unlike learnt_mesh's).
+Mesh engine_mesh(const PointCloud& cloud, const Parameters& p) {
+    NeuralMesh engine(cloud.points, cloud.bounds(), p);
+    while (engine.mesh().n_vertices() < p.target_vertices) engine.iterate();
+    return engine.take_mesh();  // the stage's order of work follows its numbering
+}
+
+// reconstruct(cloud, p) with the stage's rounds and centroid fit of `options`, required to give
+// the mesh of the stage run by hand with `options` on `learnt`, the engine's mesh for p.
+IndexedMesh reconstruct_as_by_hand(const PointCloud& cloud, Parameters p, const Mesh& learnt,
+                                   const FinishOptions& options) {
+    p.finish_rounds = std::uint32_t(options.rounds);
+    p.fit_rounds = std::uint32_t(options.fit_rounds);
+    const Result r = reconstruct(cloud, p);
+    REQUIRE(r.stats.finished);
+    Mesh by_hand = learnt;
+    finish_mesh(by_hand, cloud.points, options);
+    require_same_mesh(r.mesh, by_hand.to_indexed());
+    return r.mesh;
+}
+
 }  // namespace
 
 TEST_CASE("with the stage off, reconstruct gives the learning engine's mesh bit for bit") {
@@ -575,24 +597,17 @@ TEST_CASE("Parameters::finish_rounds is the stage's number of regularisation rou
     const PointCloud cloud = cloud_left_as_it_is();
     Parameters p;
     p.target_vertices = 300;
-    NeuralMesh engine(cloud.points, cloud.bounds(), p);
-    while (engine.mesh().n_vertices() < p.target_vertices) engine.iterate();
-    const Mesh learnt = engine.take_mesh();  // the stage's order of work follows its numbering
+    const Mesh learnt = engine_mesh(cloud, p);
     std::vector<IndexedMesh> finished;
     for (const std::uint32_t rounds : {0u, 2u, 10u}) {
         INFO("rounds " << rounds);
-        p.finish_rounds = rounds;
-        const Result r = reconstruct(cloud, p);
-        REQUIRE(r.stats.finished);
-        Mesh by_hand = learnt;
         FinishOptions options;
         options.rounds = int(rounds);
-        finish_mesh(by_hand, cloud.points, options);
-        require_same_mesh(r.mesh, by_hand.to_indexed());
-        CHECK(check_manifold(Mesh::from_indexed(r.mesh)).ok);
-        CHECK(r.mesh.positions.size() == 300);
-        for (const IndexedMesh& other : finished) CHECK_FALSE(other.positions == r.mesh.positions);
-        finished.push_back(r.mesh);
+        const IndexedMesh mesh = reconstruct_as_by_hand(cloud, p, learnt, options);
+        CHECK(check_manifold(Mesh::from_indexed(mesh)).ok);
+        CHECK(mesh.positions.size() == 300);
+        for (const IndexedMesh& other : finished) CHECK_FALSE(other.positions == mesh.positions);
+        finished.push_back(mesh);
     }
     Parameters defaults;  // ten rounds unless told otherwise
     defaults.target_vertices = p.target_vertices;
@@ -609,25 +624,18 @@ TEST_CASE("Parameters::fit_rounds is the stage's centroid fit, which lowers DM(X
     const PointCloud cloud = cloud_left_as_it_is();
     Parameters p;
     p.target_vertices = 2000;  // 1.5 points per vertex: the fit then has the most to move
-    NeuralMesh engine(cloud.points, cloud.bounds(), p);
-    while (engine.mesh().n_vertices() < p.target_vertices) engine.iterate();
-    const Mesh learnt = engine.take_mesh();
+    const Mesh learnt = engine_mesh(cloud, p);
     double previous_dm = 0.0;
     for (const std::uint32_t fit : {0u, 1u, 2u}) {
         INFO("fit rounds " << fit);
-        p.fit_rounds = fit;
-        const Result r = reconstruct(cloud, p);
-        REQUIRE(r.stats.finished);
-        Mesh by_hand = learnt;
         FinishOptions options;
         options.fit_rounds = int(fit);
-        finish_mesh(by_hand, cloud.points, options);
-        require_same_mesh(r.mesh, by_hand.to_indexed());
-        const QualityReport q = evaluate(cloud.points, r.mesh);
+        const IndexedMesh mesh = reconstruct_as_by_hand(cloud, p, learnt, options);
+        const QualityReport q = evaluate(cloud.points, mesh);
         CHECK(q.closed);
         CHECK(q.manifold);
         CHECK(q.self_intersections == 0);
-        CHECK(r.mesh.positions.size() == 2000);
+        CHECK(mesh.positions.size() == 2000);
         if (fit > 0) CHECK(q.dm_x_t < 0.97 * previous_dm);
         previous_dm = q.dm_x_t;
     }
