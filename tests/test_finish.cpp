@@ -549,9 +549,7 @@ TEST_CASE("with the stage off, reconstruct gives the learning engine's mesh bit 
     p.target_vertices = 300;
     p.finish = false;
     const Result r = reconstruct(cloud, p);
-    NeuralMesh engine(cloud.points, cloud.bounds(), p);
-    while (engine.mesh().n_vertices() < p.target_vertices) engine.iterate();
-    const IndexedMesh direct = engine.mesh().to_indexed();
+    const IndexedMesh direct = engine_mesh(cloud, p).to_indexed();
     require_same_mesh(r.mesh, direct);
     // With the stage (the default) the mesh differs, with the same vertex count.
     p.finish = true;
@@ -569,15 +567,8 @@ TEST_CASE("the stage run on the engine's cloud index gives the mesh it gives on 
     Parameters p;
     p.target_vertices = 300;
     REQUIRE(p.edge_swap);  // the engine has an index only for the edge swap
-    const Result r = reconstruct(cloud, p);
-    REQUIRE(r.stats.finished);
-    NeuralMesh engine(cloud.points, cloud.bounds(), p);
-    while (engine.mesh().n_vertices() < p.target_vertices) engine.iterate();
-    Mesh mesh = engine.take_mesh();
-    const Mesh learnt = mesh;
-    finish_mesh(mesh, cloud.points);
-    const IndexedMesh direct = mesh.to_indexed();
-    require_same_mesh(r.mesh, direct);
+    const Mesh learnt = engine_mesh(cloud, p);
+    const IndexedMesh direct = reconstruct_as_by_hand(cloud, p, learnt, {});
 
     // The same through finish_mesh's argument, with an index built through a transform over
     // points that it maps exactly onto the cloud's (halved, then doubled).
