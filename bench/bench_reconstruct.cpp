@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "nmesh/error.h"
-#include "nmesh/point_reader.h"
+#include "nmesh/io.h"
 #include "nmesh/reconstruct.h"
 #include "summary.h"
 

@@ -72,9 +72,9 @@
 #include <unistd.h>
 
 #include "nmesh/error.h"
-#include "nmesh/cloud_sample.h"
-#include "nmesh/point_reader.h"
-#include "nmesh/random.h"
+#include "nmesh/spatial/cloud_sample.h"
+#include "nmesh/io.h"
+#include "nmesh/util/random.h"
 #include "nmesh/reconstruct.h"
 #include "summary.h"
 

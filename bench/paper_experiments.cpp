@@ -17,9 +17,8 @@
 #include <vector>
 
 #include "nmesh/error.h"
-#include "nmesh/mesh_io.h"
+#include "nmesh/io.h"
 #include "nmesh/metrics.h"
-#include "nmesh/point_reader.h"
 #include "nmesh/reconstruct.h"
 #include "summary.h"
 

@@ -17,9 +17,9 @@
 
 #include "nmesh/error.h"
 #include "nmesh/metrics.h"
-#include "nmesh/png_writer.h"
-#include "nmesh/point_grid.h"
-#include "nmesh/point_reader.h"
+#include "nmesh/render/png_writer.h"
+#include "nmesh/spatial/point_grid.h"
+#include "nmesh/io.h"
 #include "nmesh/reconstruct.h"
 #include "nmesh/render.h"
 
@@ -141,8 +141,7 @@ int main(int argc, char** argv) {
                                                tile(run(cloud, 5000, 0.08, 0.01, true))});
 
         // Figure 10 and its error map.
-        const nmesh::PointGrid grid(cloud.points);
-        const std::vector<float> error = nmesh::vertex_distances_to_cloud(grid, full);
+        const std::vector<float> error = nmesh::vertex_distances_to_cloud(cloud.points, full);
         nmesh::Parameters learnt_only = p;
         learnt_only.finish = false;
         const nmesh::IndexedMesh learnt = nmesh::reconstruct(cloud, learnt_only).mesh;

@@ -5,8 +5,7 @@
 #include <cstdlib>
 
 #include "nmesh/error.h"
-#include "nmesh/mesh_io.h"
-#include "nmesh/point_reader.h"
+#include "nmesh/io.h"
 #include "nmesh/reconstruct.h"
 
 int main(int argc, char** argv) {

@@ -3,8 +3,7 @@
 
 #include <cstddef>
 #include <limits>
-#include <vector>
-
+#include "nmesh/point_span.h"
 #include "nmesh/vec3.h"
 
 namespace nmesh {
@@ -28,6 +27,6 @@ struct BoundingBox {
 };
 
 // The bounding box of a set of points; O(n).
-BoundingBox bounding_box(const std::vector<Vec3>& points);
+BoundingBox bounding_box(PointSpan points);
 
 }  // namespace nmesh

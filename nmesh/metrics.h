@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "nmesh/indexed_mesh.h"
-#include "nmesh/point_grid.h"
+#include "nmesh/point_span.h"
 #include "nmesh/vec3.h"
 
 namespace nmesh {
@@ -101,7 +101,7 @@ double dm_cloud_to_centroids(const std::vector<Vec3>& points, const IndexedMesh&
 
 // Distance from each mesh position to the nearest point of `cloud` (for colouring an error map).
 // O(V) queries.
-std::vector<float> vertex_distances_to_cloud(const PointGrid& cloud, const IndexedMesh& mesh);
+std::vector<float> vertex_distances_to_cloud(PointSpan cloud, const IndexedMesh& mesh);
 
 // Squared distance from p to the triangle abc (its closest point may lie inside, on an edge or at
 // a vertex), computed in double. Degenerate triangles are handled (distance to a segment or point).

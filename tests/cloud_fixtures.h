@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "nmesh/point_cloud.h"
-#include "nmesh/random.h"
+#include "nmesh/util/random.h"
 
 namespace nmesh::test {
 

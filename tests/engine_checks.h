@@ -7,9 +7,9 @@
 #include <string>
 
 #include "nmesh/indexed_mesh.h"
-#include "nmesh/mesh.h"
-#include "nmesh/mesh_check.h"
-#include "nmesh/neural_mesh.h"
+#include "nmesh/mesh/mesh.h"
+#include "nmesh/mesh/mesh_check.h"
+#include "nmesh/learn/neural_mesh.h"
 
 namespace nmesh::test {
 

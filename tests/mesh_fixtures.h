@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "nmesh/mesh.h"
+#include "nmesh/mesh/mesh.h"
 
 namespace nmesh::test {
 

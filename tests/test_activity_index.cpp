@@ -14,9 +14,9 @@
 #include <tuple>
 #include <vector>
 
-#include "nmesh/activity_index.h"
+#include "nmesh/learn/activity_index.h"
 #include "nmesh/error.h"
-#include "nmesh/random.h"
+#include "nmesh/util/random.h"
 
 using nmesh::ActivityIndex;
 using nmesh::Random;

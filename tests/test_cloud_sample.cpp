@@ -8,9 +8,9 @@
 #include <map>
 #include <vector>
 
-#include "nmesh/cloud_sample.h"
-#include "nmesh/point_grid.h"
-#include "nmesh/point_transform.h"
+#include "nmesh/spatial/cloud_sample.h"
+#include "nmesh/spatial/point_grid.h"
+#include "nmesh/spatial/point_transform.h"
 #include "nmesh/reconstruct.h"
 #include "cloud_fixtures.h"
 #include "engine_checks.h"

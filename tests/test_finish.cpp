@@ -11,14 +11,14 @@
 
 #include "cloud_fixtures.h"
 #include "mesh_fixtures.h"
-#include "nmesh/finish.h"
-#include "nmesh/mesh.h"
-#include "nmesh/mesh_check.h"
+#include "nmesh/finish/finish.h"
+#include "nmesh/mesh/mesh.h"
+#include "nmesh/mesh/mesh_check.h"
 #include "nmesh/metrics.h"
-#include "nmesh/neural_mesh.h"
-#include "nmesh/point_grid.h"
-#include "nmesh/point_transform.h"
-#include "nmesh/random.h"
+#include "nmesh/learn/neural_mesh.h"
+#include "nmesh/spatial/point_grid.h"
+#include "nmesh/spatial/point_transform.h"
+#include "nmesh/util/random.h"
 #include "nmesh/reconstruct.h"
 
 using namespace nmesh;

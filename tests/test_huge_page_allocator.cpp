@@ -8,7 +8,7 @@
 #include <new>
 #include <vector>
 
-#include "nmesh/huge_page_allocator.h"
+#include "nmesh/util/huge_page_allocator.h"
 
 using nmesh::HugePageAllocator;
 

@@ -7,8 +7,8 @@
 
 #include "mesh_fixtures.h"
 #include "nmesh/error.h"
-#include "nmesh/mesh.h"
-#include "nmesh/mesh_check.h"
+#include "nmesh/mesh/mesh.h"
+#include "nmesh/mesh/mesh_check.h"
 
 using namespace nmesh;
 using nmesh::test::bipyramid;

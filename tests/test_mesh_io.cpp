@@ -20,8 +20,7 @@
 #include <vector>
 
 #include "nmesh/error.h"
-#include "nmesh/mesh_io.h"
-#include "nmesh/point_reader.h"
+#include "nmesh/io.h"
 #include "io_fixtures.h"
 
 #ifndef _WIN32

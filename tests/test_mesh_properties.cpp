@@ -9,8 +9,8 @@
 #include <random>
 
 #include "mesh_fixtures.h"
-#include "nmesh/mesh.h"
-#include "nmesh/mesh_check.h"
+#include "nmesh/mesh/mesh.h"
+#include "nmesh/mesh/mesh_check.h"
 
 using namespace nmesh;
 using nmesh::test::face_set;

@@ -523,7 +523,7 @@ TEST_CASE("vertex_distances_to_cloud matches brute force") {
     std::vector<Vec3> cloud;
     for (int i = 0; i < 500; ++i) cloud.push_back({u(rng), u(rng), u(rng)});
     const IndexedMesh mesh = icosphere(2);
-    const std::vector<float> d = nmesh::vertex_distances_to_cloud(nmesh::PointGrid(cloud), mesh);
+    const std::vector<float> d = nmesh::vertex_distances_to_cloud(cloud, mesh);
     REQUIRE(d.size() == mesh.positions.size());
     for (std::size_t v = 0; v < d.size(); ++v) {
         float best = std::numeric_limits<float>::infinity();

@@ -17,8 +17,8 @@
 
 #include "nmesh/bounding_box.h"
 #include "nmesh/error.h"
-#include "nmesh/point_grid.h"
-#include "nmesh/point_transform.h"
+#include "nmesh/spatial/point_grid.h"
+#include "nmesh/spatial/point_transform.h"
 #include "cloud_fixtures.h"
 
 using nmesh::BoundingBox;

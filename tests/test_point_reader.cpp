@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "nmesh/error.h"
-#include "nmesh/point_reader.h"
+#include "nmesh/io.h"
 #include "io_fixtures.h"
 
 using nmesh::Vec3;

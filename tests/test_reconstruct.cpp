@@ -10,10 +10,10 @@
 #include "cloud_fixtures.h"
 #include "engine_checks.h"
 #include "nmesh/error.h"
-#include "nmesh/mesh.h"
-#include "nmesh/mesh_check.h"
-#include "nmesh/neural_mesh.h"
-#include "nmesh/point_grid.h"
+#include "nmesh/mesh/mesh.h"
+#include "nmesh/mesh/mesh_check.h"
+#include "nmesh/learn/neural_mesh.h"
+#include "nmesh/spatial/point_grid.h"
 #include "nmesh/reconstruct.h"
 
 using namespace nmesh;

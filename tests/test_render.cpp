@@ -23,7 +23,7 @@
 
 #include "nmesh/error.h"
 #include "nmesh/indexed_mesh.h"
-#include "nmesh/png_writer.h"
+#include "nmesh/render/png_writer.h"
 #include "nmesh/render.h"
 
 using nmesh::Camera;

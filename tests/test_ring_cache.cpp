@@ -7,10 +7,10 @@
 #include <vector>
 
 #include "mesh_fixtures.h"
-#include "nmesh/mesh.h"
-#include "nmesh/mesh_check.h"
-#include "nmesh/random.h"
-#include "nmesh/ring_cache.h"
+#include "nmesh/mesh/mesh.h"
+#include "nmesh/mesh/mesh_check.h"
+#include "nmesh/util/random.h"
+#include "nmesh/learn/ring_cache.h"
 
 using namespace nmesh;
 

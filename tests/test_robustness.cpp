@@ -14,10 +14,10 @@
 #include "cloud_fixtures.h"
 #include "engine_checks.h"
 #include "nmesh/error.h"
-#include "nmesh/mesh.h"
-#include "nmesh/mesh_check.h"
-#include "nmesh/neural_mesh.h"
-#include "nmesh/random.h"
+#include "nmesh/mesh/mesh.h"
+#include "nmesh/mesh/mesh_check.h"
+#include "nmesh/learn/neural_mesh.h"
+#include "nmesh/util/random.h"
 #include "nmesh/reconstruct.h"
 
 using namespace nmesh;

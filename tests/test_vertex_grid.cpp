@@ -7,9 +7,9 @@
 
 #include "nmesh/bounding_box.h"
 #include "nmesh/error.h"
-#include "nmesh/random.h"
+#include "nmesh/util/random.h"
 #include "nmesh/vec3.h"
-#include "nmesh/vertex_grid.h"
+#include "nmesh/spatial/vertex_grid.h"
 
 using nmesh::BoundingBox;
 using nmesh::Random;

@@ -18,9 +18,8 @@
 #include "nmesh/cli/progress_bar.h"
 #include "nmesh/cli/render_command.h"
 #include "nmesh/error.h"
-#include "nmesh/mesh_io.h"
+#include "nmesh/io.h"
 #include "nmesh/metrics.h"
-#include "nmesh/point_reader.h"
 #include "nmesh/reconstruct.h"
 
 namespace nmesh::cli {

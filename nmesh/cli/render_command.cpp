@@ -15,11 +15,10 @@
 #include "nmesh/bounding_box.h"
 #include "nmesh/cli/arguments.h"
 #include "nmesh/error.h"
-#include "nmesh/mesh_io.h"
+#include "nmesh/io.h"
 #include "nmesh/metrics.h"
-#include "nmesh/png_writer.h"
-#include "nmesh/point_grid.h"
-#include "nmesh/point_reader.h"
+#include "nmesh/render/png_writer.h"
+#include "nmesh/spatial/point_grid.h"
 #include "nmesh/render.h"
 
 namespace nmesh::cli {
@@ -104,8 +103,7 @@ std::vector<float> error_map(const std::string& points_path, const IndexedMesh& 
                              RenderOptions& options) {
     const PointCloud cloud = read_points(points_path);
     if (cloud.empty()) throw IoError(points_path + ": no points");
-    const PointGrid grid(cloud.points);
-    std::vector<float> distances = vertex_distances_to_cloud(grid, mesh);
+    std::vector<float> distances = vertex_distances_to_cloud(cloud.points, mesh);
     double largest = 0.0, sum = 0.0;
     for (const float d : distances) {
         largest = std::max(largest, double(d));

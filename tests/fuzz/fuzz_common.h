@@ -17,8 +17,7 @@
 #include "nmesh/bounding_box.h"
 #include "nmesh/error.h"
 #include "nmesh/indexed_mesh.h"
-#include "nmesh/mesh_io.h"
-#include "nmesh/point_reader.h"
+#include "nmesh/io.h"
 
 namespace nmesh::fuzz {
 

@@ -6,31 +6,12 @@
 #include <memory>
 #include <string>
 
-#include "nmesh/cloud_sample.h"
+#include "nmesh/spatial/cloud_sample.h"
 #include "nmesh/error.h"
-#include "nmesh/finish.h"
-#include "nmesh/neural_mesh.h"
+#include "nmesh/finish/finish.h"
+#include "nmesh/learn/neural_mesh.h"
 
 namespace nmesh {
-
-void Parameters::validate() const {
-    auto bad = [](const std::string& name, const std::string& why) {
-        throw ParameterError("invalid parameter " + name + ": " + why);
-    };
-    if (target_vertices < 4) bad("target_vertices", "must be at least 4 (a tetrahedron), got " + std::to_string(target_vertices));
-    if (target_vertices > NeuralMesh::kMaxTargetVertices)
-        bad("target_vertices", "must be at most " + std::to_string(NeuralMesh::kMaxTargetVertices) +
-                                   " (the mesh holds at most 2^31 half-edges), got " + std::to_string(target_vertices));
-    if (!(alpha_w > 0.0 && alpha_w <= 1.0)) bad("alpha_w", "must be in (0, 1], got " + std::to_string(alpha_w));
-    if (!(alpha_n >= 0.0 && alpha_n <= 1.0)) bad("alpha_n", "must be in [0, 1], got " + std::to_string(alpha_n));
-    if (!(alpha > 0.0 && alpha < 1.0)) bad("alpha", "must be in (0, 1), got " + std::to_string(alpha));
-    if (cvs < 1) bad("cvs", "must be at least 1");
-    if (cec < 1) bad("cec", "must be at least 1");
-    if (!(settle >= 0.0 && settle <= 1e6)) bad("settle", "must be in [0, 1e6], got " + std::to_string(settle));
-    if (finish_rounds > 1000) bad("finish_rounds", "must be in [0, 1000], got " + std::to_string(finish_rounds));
-    if (fit_rounds > 100) bad("fit_rounds", "must be in [0, 100], got " + std::to_string(fit_rounds));
-    if (fit_rounds > 0 && !finish) bad("fit_rounds", "needs the finishing stage (finish), which is off");
-}
 
 // One default for the finishing stage's rounds, whether it is run through reconstruct() or alone.
 static_assert(FinishOptions{}.rounds == int(Parameters{}.finish_rounds), "two defaults for the finishing rounds");
@@ -70,7 +51,7 @@ struct Normalization {
 // surface). Returns the cloud's bounding box. Two passes over the cloud (the box; the point
 // farthest from the first), then passes that stop at the first point off the line and at the
 // fourth distinct point. A non-finite coordinate shows as an infinite box or a NaN distance.
-BoundingBox require_reconstructible(const std::vector<Vec3>& pts) {
+BoundingBox require_reconstructible(PointSpan pts) {
     if (pts.size() < 4) throw InputError("the point cloud has " + std::to_string(pts.size()) + " points; at least 4 distinct points are needed");
     const BoundingBox box = bounding_box(pts);
     const Vec3 a = pts[0];
@@ -111,15 +92,15 @@ double estimated_seconds_left(const Progress& p) {
     return loop * (1.0 - fraction) / fraction;
 }
 
-Result reconstruct(const PointCloud& cloud, const Parameters& params, const Callbacks& callbacks) {
+Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& callbacks) {
     params.validate();
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
-    const Normalization norm(require_reconstructible(cloud.points));
+    const Normalization norm(require_reconstructible(cloud));
     // On the heap, so that it can be destroyed, and its memory freed, as soon as the learning ends.
-    auto engine_ptr = std::make_unique<NeuralMesh>(cloud.points, norm.bounds, params, norm.transform);
+    auto engine_ptr = std::make_unique<NeuralMesh>(cloud, norm.bounds, params, norm.transform);
     NeuralMesh& engine = *engine_ptr;
     engine.set_profiling(callbacks.profile);
 
@@ -215,7 +196,7 @@ Result reconstruct(const PointCloud& cloud, const Parameters& params, const Call
     bool finished = false;
     if (finish) {
         if (!cloud_index) {
-            cloud_index = index_cloud(cloud.points, norm.transform, norm.bounds, params);
+            cloud_index = index_cloud(cloud, norm.transform, norm.bounds, params);
             record_index(*cloud_index, result.stats);
         }
         Mesh mesh = learnt;

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "nmesh/mesh.h"
+#include "nmesh/mesh/mesh.h"
 
 namespace nmesh {
 

@@ -1,7 +1,7 @@
 // The finishing stage (nmesh/finish.h). Choice beyond the paper, which stops when the mesh has its
 // target size: the learnt mesh is regularised and its folds and self-intersections repaired;
 // Parameters::finish = false switches the stage off and gives the paper's plain algorithm.
-#include "nmesh/finish.h"
+#include "nmesh/finish/finish.h"
 
 #include <algorithm>
 #include <array>

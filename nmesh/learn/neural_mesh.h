@@ -13,14 +13,15 @@
 #include <utility>
 #include <vector>
 
-#include "nmesh/activity_index.h"
-#include "nmesh/mesh.h"
-#include "nmesh/point_grid.h"
-#include "nmesh/point_transform.h"
-#include "nmesh/random.h"
-#include "nmesh/reconstruct.h"
-#include "nmesh/ring_cache.h"
-#include "nmesh/vertex_grid.h"
+#include "nmesh/learn/activity_index.h"
+#include "nmesh/mesh/mesh.h"
+#include "nmesh/spatial/point_grid.h"
+#include "nmesh/spatial/point_transform.h"
+#include "nmesh/util/random.h"
+#include "nmesh/parameters.h"
+#include "nmesh/statistics.h"
+#include "nmesh/learn/ring_cache.h"
+#include "nmesh/spatial/vertex_grid.h"
 
 namespace nmesh {
 
@@ -36,7 +37,7 @@ public:
     // The transformed points should be normalised (reconstruct() centres them and scales them
     // into a box of diagonal at most 1), finite, and `bounds` is their exact bounding box (the
     // nearest-point index is laid out on it). `params` must be valid.
-    NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bounds, const Parameters& params,
+    NeuralMesh(PointSpan points, const BoundingBox& bounds, const Parameters& params,
                const PointTransform& transform = {});
 
     // One iteration of steps 1-6, followed by step 7 or 8 when it is due.
@@ -100,7 +101,7 @@ private:
     void adapt_ahead(const Vec3& x);
     std::uint32_t early_winner(const Vec3& x) const;
 
-    const std::vector<Vec3>& points_;
+    PointSpan points_;
     PointTransform transform_;
     Parameters params_;
     Mesh mesh_;

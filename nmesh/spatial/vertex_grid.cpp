@@ -1,4 +1,4 @@
-#include "nmesh/vertex_grid.h"
+#include "nmesh/spatial/vertex_grid.h"
 
 #include <algorithm>
 #include <cassert>

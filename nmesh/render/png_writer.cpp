@@ -1,5 +1,5 @@
 // nmesh/png_writer.cpp — PNG chunks, row filters, and a fixed-Huffman deflate with LZ77.
-#include "nmesh/png_writer.h"
+#include "nmesh/render/png_writer.h"
 
 #include <algorithm>
 #include <array>
@@ -8,7 +8,7 @@
 #include <ostream>
 
 #include "nmesh/error.h"
-#include "nmesh/mesh_io.h"
+#include "nmesh/io.h"
 
 namespace nmesh {
 namespace {

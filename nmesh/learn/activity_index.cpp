@@ -1,4 +1,4 @@
-#include "nmesh/activity_index.h"
+#include "nmesh/learn/activity_index.h"
 
 #include <algorithm>
 #include <cmath>

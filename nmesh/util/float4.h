@@ -8,7 +8,7 @@
 // NMESH_NO_SIMD selects the plain lanes (nmesh/simd.h).
 #pragma once
 
-#include "nmesh/simd.h"
+#include "nmesh/util/simd.h"
 #include "nmesh/vec3.h"
 
 namespace nmesh {

@@ -39,8 +39,8 @@
 #include <utility>
 #include <vector>
 
-#include "nmesh/mesh.h"
-#include "nmesh/point_grid.h"
+#include "nmesh/mesh/mesh.h"
+#include "nmesh/spatial/point_grid.h"
 
 namespace nmesh {
 

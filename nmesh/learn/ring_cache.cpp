@@ -1,4 +1,4 @@
-#include "nmesh/ring_cache.h"
+#include "nmesh/learn/ring_cache.h"
 
 #include <sstream>
 

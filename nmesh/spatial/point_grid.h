@@ -22,8 +22,8 @@
 #include <vector>
 
 #include "nmesh/bounding_box.h"
-#include "nmesh/huge_page_allocator.h"
-#include "nmesh/point_transform.h"
+#include "nmesh/util/huge_page_allocator.h"
+#include "nmesh/spatial/point_transform.h"
 #include "nmesh/vec3.h"
 
 namespace nmesh {
@@ -56,11 +56,11 @@ public:
     //
     // `transform`: the index is built over transform(p) for the points p (no copy of the
     // transformed cloud is made besides the index's own); identity by default.
-    explicit PointGrid(const std::vector<Vec3>& points, const PointTransform& transform = {});
+    explicit PointGrid(PointSpan points, const PointTransform& transform = {});
     // The same index when the caller already knows `bounds`, the bounding box of the transformed
     // points (all of them finite, as the caller has checked): the pass over the points that
     // finds the box and checks every coordinate is skipped (0.3 s for 36 million points).
-    PointGrid(const std::vector<Vec3>& points, const PointTransform& transform, const BoundingBox& bounds);
+    PointGrid(PointSpan points, const PointTransform& transform, const BoundingBox& bounds);
 
     // The nearest point to q, with ties going to the smaller index.
     // Precondition: q is finite, and squared distances from q to the points fit in a float
@@ -100,7 +100,7 @@ public:
 
 private:
     // The construction once the box of the transformed points is known.
-    void build(const std::vector<Vec3>& points, const PointTransform& transform, const BoundingBox& box);
+    void build(PointSpan points, const PointTransform& transform, const BoundingBox& box);
 
     // Occupancy of the 64 cells of a brick, and the number of occupied cells before the brick.
     struct OccupancyWord {

@@ -1,4 +1,4 @@
-#include "nmesh/mesh.h"
+#include "nmesh/mesh/mesh.h"
 
 #include <algorithm>
 #include <cassert>
@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "nmesh/error.h"
-#include "nmesh/mesh_check.h"
+#include "nmesh/mesh/mesh_check.h"
 
 namespace nmesh {
 

@@ -14,9 +14,10 @@
 #include <vector>
 
 #include "nmesh/bounding_box.h"
-#include "nmesh/point_grid.h"
-#include "nmesh/point_transform.h"
-#include "nmesh/reconstruct.h"
+#include "nmesh/spatial/point_grid.h"
+#include "nmesh/spatial/point_transform.h"
+#include "nmesh/parameters.h"
+#include "nmesh/statistics.h"
 #include "nmesh/vec3.h"
 
 namespace nmesh {
@@ -28,7 +29,7 @@ namespace nmesh {
 // together: the sample covers the whole scan, at an even density, where a plain random sample
 // would leave gaps and clumps. The same seed gives the same sample.
 // Requires 0 < count <= points.size(); O(count) time, whatever the size of the cloud.
-std::vector<Vec3> stratified_sample(const std::vector<Vec3>& points, std::size_t count, std::uint64_t seed);
+std::vector<Vec3> stratified_sample(PointSpan points, std::size_t count, std::uint64_t seed);
 
 // The number of cloud points reconstruct() indexes for `params` (its target and
 // index_points_per_vertex) out of a cloud of n points.
@@ -39,7 +40,7 @@ std::size_t index_point_count(std::size_t n, const Parameters& params);
 // derived from params.seed (a stream apart from the learning's samples). `bounds`: the box of all
 // the transformed points (it holds the sample's too). The index names a point by its place in
 // the sample (PointGrid::indexed_points() gives them in that order).
-std::unique_ptr<PointGrid> index_cloud(const std::vector<Vec3>& points, const PointTransform& transform,
+std::unique_ptr<PointGrid> index_cloud(PointSpan points, const PointTransform& transform,
                                        const BoundingBox& bounds, const Parameters& params);
 
 // Statistics::indexed_points and index_bytes for `index`.

@@ -1,5 +1,5 @@
 // nmesh/mesh_io.cpp — mesh writers (PLY, OBJ, OFF), the atomic file write, and read_mesh.
-#include "nmesh/mesh_io.h"
+#include "nmesh/io.h"
 
 #include <algorithm>
 #include <atomic>
@@ -21,7 +21,6 @@
 #endif
 
 #include "nmesh/error.h"
-#include "nmesh/point_reader.h"
 
 namespace nmesh {
 namespace {

@@ -57,7 +57,7 @@
 #include <limits>
 #include <vector>
 
-#include "nmesh/prefetch.h"
+#include "nmesh/util/prefetch.h"
 
 namespace nmesh {
 

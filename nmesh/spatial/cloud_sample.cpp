@@ -1,12 +1,12 @@
-#include "nmesh/cloud_sample.h"
+#include "nmesh/spatial/cloud_sample.h"
 
 #include <cassert>
 
-#include "nmesh/random.h"
+#include "nmesh/util/random.h"
 
 namespace nmesh {
 
-std::vector<Vec3> stratified_sample(const std::vector<Vec3>& points, std::size_t count, std::uint64_t seed) {
+std::vector<Vec3> stratified_sample(PointSpan points, std::size_t count, std::uint64_t seed) {
     const std::size_t n = points.size();
     assert(count > 0 && count <= n && n <= 0xffffffffu);
     Random rng(seed);
@@ -27,7 +27,7 @@ std::size_t index_point_count(std::size_t n, const Parameters& params) {
     return budget < n ? std::size_t(budget) : n;
 }
 
-std::unique_ptr<PointGrid> index_cloud(const std::vector<Vec3>& points, const PointTransform& transform,
+std::unique_ptr<PointGrid> index_cloud(PointSpan points, const PointTransform& transform,
                                        const BoundingBox& bounds, const Parameters& params) {
     const std::size_t count = index_point_count(points.size(), params);
     if (count == points.size()) return std::make_unique<PointGrid>(points, transform, bounds);

@@ -34,8 +34,8 @@
 #include <vector>
 
 #include "nmesh/bounding_box.h"
-#include "nmesh/prefetch.h"
-#include "nmesh/simd.h"
+#include "nmesh/util/prefetch.h"
+#include "nmesh/util/simd.h"
 #include "nmesh/vec3.h"
 
 namespace nmesh {

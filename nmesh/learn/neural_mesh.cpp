@@ -1,7 +1,7 @@
 // The Neural Meshes learning loop, step by step as section 3 of the Neural Meshes ES paper lists
 // it, plus the edge swap of section 4. Where the papers leave a choice open, the choice is named
 // "Choice:" here and listed in README.md.
-#include "nmesh/neural_mesh.h"
+#include "nmesh/learn/neural_mesh.h"
 
 #include <algorithm>
 #include <cassert>
@@ -9,9 +9,9 @@
 #include <cmath>
 #include <sstream>
 
-#include "nmesh/cloud_sample.h"
-#include "nmesh/float4.h"
-#include "nmesh/prefetch.h"
+#include "nmesh/spatial/cloud_sample.h"
+#include "nmesh/util/float4.h"
+#include "nmesh/util/prefetch.h"
 
 namespace nmesh {
 namespace {
@@ -19,7 +19,7 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 }  // namespace
 
-NeuralMesh::NeuralMesh(const std::vector<Vec3>& points, const BoundingBox& bounds, const Parameters& params,
+NeuralMesh::NeuralMesh(PointSpan points, const BoundingBox& bounds, const Parameters& params,
                        const PointTransform& transform)
     : points_(points), transform_(transform), params_(params), grid_(bounds), activity_(params.alpha), rng_(params.seed) {
     // Choice: the initial tetrahedron is regular, centred on the cloud's bounding box, with a

@@ -1,4 +1,4 @@
-#include "nmesh/mesh_check.h"
+#include "nmesh/mesh/mesh_check.h"
 
 #include <cstdio>
 #include <cstdlib>

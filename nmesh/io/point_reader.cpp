@@ -1,6 +1,6 @@
 // nmesh/point_reader.cpp — the PLY, text (XYZ), OBJ and OFF readers behind read_points,
 // inspect_file and read_geometry.
-#include "nmesh/point_reader.h"
+#include "nmesh/io.h"
 
 #include <algorithm>
 #include <array>

@@ -18,6 +18,7 @@
 
 #include "nmesh/bounding_box.h"
 #include "nmesh/error.h"
+#include "nmesh/spatial/point_grid.h"
 
 namespace nmesh {
 
@@ -623,7 +624,8 @@ double dm_cloud_to_centroids(const std::vector<Vec3>& points, const IndexedMesh&
     return sum / double(points.size());
 }
 
-std::vector<float> vertex_distances_to_cloud(const PointGrid& cloud, const IndexedMesh& mesh) {
+std::vector<float> vertex_distances_to_cloud(PointSpan points, const IndexedMesh& mesh) {
+    const PointGrid cloud(points);
     std::vector<float> d;
     d.reserve(mesh.positions.size());
     for (const Vec3& v : mesh.positions) d.push_back(std::sqrt(cloud.nearest_squared_distance(v)));

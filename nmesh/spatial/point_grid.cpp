@@ -1,4 +1,4 @@
-#include "nmesh/point_grid.h"
+#include "nmesh/spatial/point_grid.h"
 
 #include <algorithm>
 #include <cassert>
@@ -80,7 +80,7 @@ void require_indexable(std::size_t n) {
 
 // ---- construction -------------------------------------------------------------------------------
 
-PointGrid::PointGrid(const std::vector<Vec3>& points, const PointTransform& transform) {
+PointGrid::PointGrid(PointSpan points, const PointTransform& transform) {
     const std::size_t n = points.size();
     require_indexable(n);
     // One pass: finiteness and the bounding box of the transformed points.
@@ -95,12 +95,12 @@ PointGrid::PointGrid(const std::vector<Vec3>& points, const PointTransform& tran
     build(points, transform, box);
 }
 
-PointGrid::PointGrid(const std::vector<Vec3>& points, const PointTransform& transform, const BoundingBox& bounds) {
+PointGrid::PointGrid(PointSpan points, const PointTransform& transform, const BoundingBox& bounds) {
     require_indexable(points.size());
     build(points, transform, bounds);
 }
 
-void PointGrid::build(const std::vector<Vec3>& points, const PointTransform& transform, const BoundingBox& box) {
+void PointGrid::build(PointSpan points, const PointTransform& transform, const BoundingBox& box) {
     const std::size_t n = points.size();
     // Grid geometry.
     double extent[3];

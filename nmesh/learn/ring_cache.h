@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "nmesh/mesh.h"
-#include "nmesh/prefetch.h"
+#include "nmesh/mesh/mesh.h"
+#include "nmesh/util/prefetch.h"
 
 namespace nmesh {
 

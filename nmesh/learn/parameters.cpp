@@ -1,0 +1,29 @@
+#include "nmesh/parameters.h"
+
+#include <string>
+
+#include "nmesh/error.h"
+#include "nmesh/learn/neural_mesh.h"
+
+namespace nmesh {
+
+void Parameters::validate() const {
+    auto bad = [](const std::string& name, const std::string& why) {
+        throw ParameterError("invalid parameter " + name + ": " + why);
+    };
+    if (target_vertices < 4) bad("target_vertices", "must be at least 4 (a tetrahedron), got " + std::to_string(target_vertices));
+    if (target_vertices > NeuralMesh::kMaxTargetVertices)
+        bad("target_vertices", "must be at most " + std::to_string(NeuralMesh::kMaxTargetVertices) +
+                                   " (the mesh holds at most 2^31 half-edges), got " + std::to_string(target_vertices));
+    if (!(alpha_w > 0.0 && alpha_w <= 1.0)) bad("alpha_w", "must be in (0, 1], got " + std::to_string(alpha_w));
+    if (!(alpha_n >= 0.0 && alpha_n <= 1.0)) bad("alpha_n", "must be in [0, 1], got " + std::to_string(alpha_n));
+    if (!(alpha > 0.0 && alpha < 1.0)) bad("alpha", "must be in (0, 1), got " + std::to_string(alpha));
+    if (cvs < 1) bad("cvs", "must be at least 1");
+    if (cec < 1) bad("cec", "must be at least 1");
+    if (!(settle >= 0.0 && settle <= 1e6)) bad("settle", "must be in [0, 1e6], got " + std::to_string(settle));
+    if (finish_rounds > 1000) bad("finish_rounds", "must be in [0, 1000], got " + std::to_string(finish_rounds));
+    if (fit_rounds > 100) bad("fit_rounds", "must be in [0, 100], got " + std::to_string(fit_rounds));
+    if (fit_rounds > 0 && !finish) bad("fit_rounds", "needs the finishing stage (finish), which is off");
+}
+
+}  // namespace nmesh

@@ -1,0 +1,48 @@
+// nmesh/parameters.h — the parameters of a reconstruction.
+//
+// The defaults are Table 2 of the Neural Meshes ES paper (its settings for the 30,000-vertex
+// bunny), except the target size, which a caller should choose. docs/algorithm.md explains each
+// choice made beyond the paper.
+#pragma once
+
+#include <cstdint>
+
+namespace nmesh {
+
+struct Parameters {
+    std::uint32_t target_vertices = 10000;  // step 9: stop at this many vertices (>= 4, and at
+                                            // most 357,913,927, the mesh's limit less a margin)
+    double alpha_w = 0.08;   // eq. (2): learning rate of the winner vertex, in (0, 1]
+    double alpha_n = 0.01;   // eq. (3): learning rate of the winner's neighbours, in [0, 1]
+    double alpha = 0.95;     // eq. (7): signal counter decay per iteration, in (0, 1)
+    std::uint32_t cvs = 100; // step 7: a vertex split every Cvs iterations (>= 1)
+    std::uint32_t cec = 20;  // step 8: inactive vertices removed every Cec * n iterations (>= 1)
+    bool edge_swap = true;   // Neural Meshes ES; false gives the basic Neural Meshes algorithm
+    std::uint64_t seed = 1;  // the same seed and input give a bit-identical mesh
+    // Iterations of steps 1-6 (no splits or collapses) run after the target size is reached, so
+    // the last vertices settle onto the surface; in units of the final vertex count n
+    // (settle * n iterations), in [0, 1e6]. 0 disables the phase.
+    double settle = 0.0;
+    // The finishing stage (nmesh/finish/finish.h) once the target size is reached:
+    // angle-improving flips and a tangential relaxation onto the cloud, then the repair of folds
+    // and self-intersections, keeping the vertex count. false gives the paper's plain algorithm.
+    bool finish = true;
+    // The finishing stage's regularisation rounds, in [0, 1000]. 0 leaves only the repair.
+    std::uint32_t finish_rounds = 10;
+    // Rounds of the finishing stage's centroid fit, in [0, 100]: each moves the vertices so that
+    // the triangles' centroids approach their nearest cloud points. It lowers DM(X,T) at the very
+    // points it is measured at, not the distance to the scanned surface; off by default. Needs
+    // the finishing stage.
+    std::uint32_t fit_rounds = 0;
+    // The nearest-point index behind eq. (9) (the edge swap's deviation) and the finishing stage
+    // holds at most this many cloud points per target vertex: the whole cloud up to that size,
+    // else a stratified sample of it, so that its cost follows the mesh rather than the cloud.
+    // The learning still draws its samples from the whole cloud, and the metrics measure against
+    // the whole cloud. 0 indexes every point.
+    std::uint32_t index_points_per_vertex = 64;
+
+    // Throws ParameterError naming the first parameter out of range.
+    void validate() const;
+};
+
+}  // namespace nmesh
