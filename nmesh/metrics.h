@@ -83,7 +83,7 @@ struct QualityReport {
 // Throws InputError if `points` is empty, if a point or a mesh vertex has a NaN or infinite
 // coordinate, if the mesh has no triangle, or if a triangle refers to a vertex that does not
 // exist; ParameterError if options.surface_samples is 0.
-QualityReport evaluate(const std::vector<Vec3>& points, const IndexedMesh& mesh,
+QualityReport evaluate(PointSpan points, const IndexedMesh& mesh,
                        const EvalOptions& options = {});
 
 // The report as one flat JSON object, keys named as the fields above (genus and undefined
@@ -97,7 +97,7 @@ void write_text(std::ostream& out, const QualityReport& report);
 // normalisation as 1 / size(T) but sums over the cloud points and calls the measure "the mean
 // error between the set of points X and the centroids"; this divides by the number of points.
 // O(n + F) expected. Throws InputError as evaluate() does.
-double dm_cloud_to_centroids(const std::vector<Vec3>& points, const IndexedMesh& mesh);
+double dm_cloud_to_centroids(PointSpan points, const IndexedMesh& mesh);
 
 // Distance from each mesh position to the nearest point of `cloud` (for colouring an error map).
 // O(V) queries.

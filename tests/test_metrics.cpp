@@ -723,12 +723,12 @@ TEST_CASE("write_json writes every key once, with the report's values") {
 TEST_CASE("evaluate rejects inputs it cannot measure") {
     const IndexedMesh m = tetrahedron();
     CHECK_THROWS_AS(nmesh::evaluate({}, m), nmesh::InputError);
-    CHECK_THROWS_AS(nmesh::evaluate({{0, 0, 0}}, IndexedMesh{m.positions, {}}), nmesh::InputError);
+    CHECK_THROWS_AS(nmesh::evaluate(std::vector<Vec3>{{0, 0, 0}}, IndexedMesh{m.positions, {}}), nmesh::InputError);
     IndexedMesh bad = m;
     bad.triangles[2][1] = 4;
     CHECK_THROWS_AS(nmesh::evaluate(m.positions, bad), nmesh::InputError);
     CHECK_THROWS_AS(nmesh::dm_cloud_to_centroids(m.positions, bad), nmesh::InputError);
-    CHECK_THROWS_AS(nmesh::evaluate({{0, std::numeric_limits<float>::quiet_NaN(), 0}}, m), nmesh::InputError);
+    CHECK_THROWS_AS(nmesh::evaluate(std::vector<Vec3>{{0, std::numeric_limits<float>::quiet_NaN(), 0}}, m), nmesh::InputError);
     EvalOptions none;
     none.surface_samples = 0;
     CHECK_THROWS_AS(nmesh::evaluate(m.positions, m, none), nmesh::ParameterError);

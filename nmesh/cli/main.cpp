@@ -21,6 +21,7 @@
 #include "nmesh/io.h"
 #include "nmesh/metrics.h"
 #include "nmesh/reconstruct.h"
+#include "nmesh/run_report.h"
 
 namespace nmesh::cli {
 namespace {
@@ -127,67 +128,6 @@ void print_summary(const Result& r, const std::string& output) {
                  (unsigned long long)s.collapses_refused, (unsigned long long)s.swaps_kept,
                  (unsigned long long)s.swaps_tried, s.seconds, s.seconds > 0 ? s.iterations / s.seconds / 1e6 : 0.0,
                  finishing.c_str());
-}
-
-// `text` as a JSON string literal: quotes, backslashes and control characters escaped; other
-// bytes (a path's UTF-8, or whatever its bytes are) copied as they are.
-std::string json_string(const std::string& text) {
-    std::string out = "\"";
-    for (const char ch : text) {
-        const auto c = static_cast<unsigned char>(ch);
-        switch (c) {
-            case '"': out += "\\\""; break;
-            case '\\': out += "\\\\"; break;
-            case '\n': out += "\\n"; break;
-            case '\t': out += "\\t"; break;
-            case '\r': out += "\\r"; break;
-            default:
-                if (c < 0x20) {
-                    char buf[8];
-                    std::snprintf(buf, sizeof buf, "\\u%04x", unsigned(c));
-                    out += buf;
-                } else {
-                    out += ch;
-                }
-        }
-    }
-    return out + "\"";
-}
-
-void write_stats(const std::string& path, const std::string& input, const Parameters& p, const Result& r,
-                 const QualityReport& q) {
-    const Statistics& s = r.stats;
-    std::ostringstream metrics;
-    write_json(metrics, q);
-    write_file_atomically(path, [&](std::ostream& o) {
-        o.precision(10);
-        o << "{\n"
-          << "  \"input\": " << json_string(input) << ",\n"
-          << "  \"seed\": " << p.seed << ",\n"
-          << "  \"parameters\": {\"target_vertices\": " << p.target_vertices << ", \"alpha_w\": " << p.alpha_w
-          << ", \"alpha_n\": " << p.alpha_n << ", \"alpha\": " << p.alpha << ", \"cvs\": " << p.cvs
-          << ", \"cec\": " << p.cec << ", \"edge_swap\": " << (p.edge_swap ? "true" : "false")
-          << ", \"settle\": " << p.settle << ", \"finish\": " << (p.finish ? "true" : "false")
-          << ", \"finish_rounds\": " << p.finish_rounds << ", \"fit_rounds\": " << p.fit_rounds
-          << ", \"index_points_per_vertex\": " << p.index_points_per_vertex << "},\n"
-          << "  \"vertices\": " << r.mesh.positions.size() << ",\n"
-          << "  \"faces\": " << r.mesh.triangles.size() << ",\n"
-          << "  \"iterations\": " << s.iterations << ",\n"
-          << "  \"settle_iterations\": " << s.settle_iterations << ",\n"
-          << "  \"splits\": " << s.splits << ",\n"
-          << "  \"collapses\": " << s.collapses << ",\n"
-          << "  \"collapses_refused\": " << s.collapses_refused << ",\n"
-          << "  \"swaps_tried\": " << s.swaps_tried << ",\n"
-          << "  \"swaps_kept\": " << s.swaps_kept << ",\n"
-          << "  \"swaps_undone\": " << s.swaps_undone << ",\n"
-          << "  \"swaps_illegal\": " << s.swaps_illegal << ",\n"
-          << "  \"indexed_points\": " << s.indexed_points << ",\n"
-          << "  \"seconds\": " << s.seconds << ",\n"
-          << "  \"seconds_finish\": " << s.seconds_finish << ",\n"
-          << "  \"cancelled\": " << (r.cancelled ? "true" : "false") << ",\n"
-          << "  \"metrics\": " << metrics.str() << "\n"
-          << "}\n";
-    });
 }
 
 // evaluate(), with its progress on stderr when it takes long (a cloud of millions of points).
@@ -305,7 +245,7 @@ int run_reconstruct(int argc, char** argv) {
     write_mesh(output, r.mesh, write_options);
     if (args.has("--stats")) {
         const QualityReport q = evaluate_with_progress(cloud.points, r.mesh, quiet);
-        write_stats(stats_path, input, p, r, q);
+        write_file_atomically(stats_path, [&](std::ostream& o) { write_run_json(o, input, p, r, q); });
         if (!quiet)
             std::fprintf(stderr, "nmesh: DM(X,T) %.6g, Hausdorff %.3g%% of the diagonal; wrote %s\n", q.dm_x_t,
                          100.0 * q.hausdorff_rel, stats_path.c_str());

@@ -442,7 +442,7 @@ void analyze_topology(const IndexedMesh& mesh, QualityReport& r) {
 // unlike std::uniform_real_distribution).
 double unit_uniform(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53; }
 
-void check_inputs(const std::vector<Vec3>& points, const IndexedMesh& mesh) {
+void check_inputs(PointSpan points, const IndexedMesh& mesh) {
     if (points.empty()) throw InputError("metrics: the point cloud is empty");
     for (std::size_t i = 0; i < points.size(); ++i)
         if (!is_finite(points[i]))
@@ -502,7 +502,7 @@ std::vector<Corners> surface_order(const IndexedMesh& mesh) {
 // on average (plus a fixed allowance), no piece is cut any more and the largest distance found
 // is returned; on a surface at a near-constant distance from a sparse cloud the cuts could
 // otherwise run to (area / tol^2) pieces.
-double surface_to_cloud_max(const std::vector<Corners>& tris, const std::vector<Vec3>& points, const PointGrid& cloud,
+double surface_to_cloud_max(const std::vector<Corners>& tris, PointSpan points, const PointGrid& cloud,
                             double found, double tol) {
     constexpr std::size_t kMaxPiecesPerTriangle = 256;
     const std::size_t budget = kMaxPiecesPerTriangle * tris.size() + (std::size_t(1) << 22);
@@ -616,7 +616,7 @@ double min_angle_deg(const Vec3& a_in, const Vec3& b_in, const Vec3& c_in) {
 
 // ---- metrics ------------------------------------------------------------------------------------
 
-double dm_cloud_to_centroids(const std::vector<Vec3>& points, const IndexedMesh& mesh) {
+double dm_cloud_to_centroids(PointSpan points, const IndexedMesh& mesh) {
     check_inputs(points, mesh);
     const PointGrid index(centroids(mesh));
     double sum = 0.0;
@@ -632,7 +632,7 @@ std::vector<float> vertex_distances_to_cloud(PointSpan points, const IndexedMesh
     return d;
 }
 
-QualityReport evaluate(const std::vector<Vec3>& points, const IndexedMesh& mesh, const EvalOptions& options) {
+QualityReport evaluate(PointSpan points, const IndexedMesh& mesh, const EvalOptions& options) {
     check_inputs(points, mesh);
     if (options.surface_samples == 0) throw ParameterError("metrics: surface_samples must be at least 1");
     QualityReport r;

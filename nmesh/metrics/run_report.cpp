@@ -1,0 +1,70 @@
+#include "nmesh/run_report.h"
+
+#include <cstdio>
+#include <ostream>
+#include <sstream>
+#include <string>
+
+namespace nmesh {
+
+// `text` as a JSON string literal: quotes, backslashes and control characters escaped; other
+// bytes (a path's UTF-8, or whatever its bytes are) copied as they are.
+std::string json_string(const std::string& text) {
+    std::string out = "\"";
+    for (const char ch : text) {
+        const auto c = static_cast<unsigned char>(ch);
+        switch (c) {
+            case '"': out += "\\\""; break;
+            case '\\': out += "\\\\"; break;
+            case '\n': out += "\\n"; break;
+            case '\t': out += "\\t"; break;
+            case '\r': out += "\\r"; break;
+            default:
+                if (c < 0x20) {
+                    char buf[8];
+                    std::snprintf(buf, sizeof buf, "\\u%04x", unsigned(c));
+                    out += buf;
+                } else {
+                    out += ch;
+                }
+        }
+    }
+    return out + "\"";
+}
+
+void write_run_json(std::ostream& o, const std::string& input, const Parameters& p, const Result& r,
+                    const QualityReport& q) {
+    const Statistics& s = r.stats;
+    std::ostringstream metrics;
+    write_json(metrics, q);
+    const auto old_precision = o.precision();
+    o.precision(10);
+    o << "{\n"
+      << "  \"input\": " << json_string(input) << ",\n"
+      << "  \"seed\": " << p.seed << ",\n"
+      << "  \"parameters\": {\"target_vertices\": " << p.target_vertices << ", \"alpha_w\": " << p.alpha_w
+      << ", \"alpha_n\": " << p.alpha_n << ", \"alpha\": " << p.alpha << ", \"cvs\": " << p.cvs
+      << ", \"cec\": " << p.cec << ", \"edge_swap\": " << (p.edge_swap ? "true" : "false")
+      << ", \"settle\": " << p.settle << ", \"finish\": " << (p.finish ? "true" : "false")
+      << ", \"finish_rounds\": " << p.finish_rounds << ", \"fit_rounds\": " << p.fit_rounds
+      << ", \"index_points_per_vertex\": " << p.index_points_per_vertex << "},\n"
+      << "  \"vertices\": " << r.mesh.positions.size() << ",\n"
+      << "  \"faces\": " << r.mesh.triangles.size() << ",\n"
+      << "  \"iterations\": " << s.iterations << ",\n"
+      << "  \"settle_iterations\": " << s.settle_iterations << ",\n"
+      << "  \"splits\": " << s.splits << ",\n"
+      << "  \"collapses\": " << s.collapses << ",\n"
+      << "  \"collapses_refused\": " << s.collapses_refused << ",\n"
+      << "  \"swaps_tried\": " << s.swaps_tried << ",\n"
+      << "  \"swaps_kept\": " << s.swaps_kept << ",\n"
+      << "  \"swaps_undone\": " << s.swaps_undone << ",\n"
+      << "  \"swaps_illegal\": " << s.swaps_illegal << ",\n"
+      << "  \"indexed_points\": " << s.indexed_points << ",\n"
+      << "  \"seconds\": " << s.seconds << ",\n"
+      << "  \"seconds_finish\": " << s.seconds_finish << ",\n"
+      << "  \"cancelled\": " << (r.cancelled ? "true" : "false") << ",\n"
+      << "  \"metrics\": " << metrics.str() << "\n"
+      << "}\n";
+}
+
+}  // namespace nmesh
