@@ -26,7 +26,7 @@ inline PointCloud sphere_cloud(std::size_t n, float radius = 1.0f, Vec3 center =
 }
 
 // Reads a binary little-endian PLY with exactly the float properties x, y, z (the format of the
-// shared scans), without the library's readers, so that tests of other parts do not depend on
+// bundled bunny), without the library's readers, so that tests of other parts do not depend on
 // them. Returns an empty vector when the file is missing or short.
 inline std::vector<Vec3> read_scan(const std::string& path) {
     std::vector<Vec3> points;
@@ -44,7 +44,7 @@ inline std::vector<Vec3> read_scan(const std::string& path) {
     return points;
 }
 
-// The bunny of the shared scans (35,947 points).
-inline PointCloud shared_bunny() { return PointCloud{read_scan(std::string(NMESH_SHARED_DATA_DIR) + "/bunny.ply")}; }
+// The bundled bunny (examples/data/bunny.ply, 35,947 points).
+inline PointCloud bundled_bunny() { return PointCloud{read_scan(std::string(NMESH_SOURCE_DIR) + "/examples/data/bunny.ply")}; }
 
 }  // namespace nmesh::test

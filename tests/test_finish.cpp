@@ -23,7 +23,7 @@
 
 using namespace nmesh;
 using nmesh::test::icosahedron;
-using nmesh::test::shared_bunny;
+using nmesh::test::bundled_bunny;
 using nmesh::test::sphere_cloud;
 
 namespace {
@@ -477,7 +477,7 @@ TEST_CASE("the stage keeps a closed manifold with the same vertex count on sever
         cases.push_back({"sphere, 2000 vertices", sphere, learnt_mesh(sphere, p)});
         cases.push_back({"pierced icosphere", sphere_cloud(5000), pierced_sphere()});
     }
-    const PointCloud bunny = shared_bunny();
+    const PointCloud bunny = bundled_bunny();
     REQUIRE(bunny.size() == 35947);
     {
         Parameters p;
@@ -634,7 +634,7 @@ TEST_CASE("Parameters::fit_rounds is the stage's centroid fit, which lowers DM(X
 }
 
 TEST_CASE("the finished bunny is a closed manifold without self-intersections or many thin triangles") {
-    const PointCloud bunny = shared_bunny();
+    const PointCloud bunny = bundled_bunny();
     REQUIRE(bunny.size() == 35947);
     Parameters p;
     p.target_vertices = 5000;

@@ -224,7 +224,7 @@ TEST_CASE("PointGrid handles flat, collinear, single-point and offset clouds") {
 }
 
 TEST_CASE("PointGrid matches brute force on the bunny scan, within its memory budget") {
-    const std::vector<Vec3> points = nmesh::test::read_scan(std::string(NMESH_SHARED_DATA_DIR) + "/bunny.ply");
+    const std::vector<Vec3> points = nmesh::test::read_scan(std::string(NMESH_SOURCE_DIR) + "/examples/data/bunny.ply");
     REQUIRE(points.size() == 35947);
     const PointGrid grid(points);
     std::mt19937 rng(7);

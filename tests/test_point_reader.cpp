@@ -19,6 +19,7 @@
 
 #include "nmesh/error.h"
 #include "nmesh/io.h"
+#include "bunny_files.h"
 #include "io_fixtures.h"
 
 using nmesh::Vec3;
@@ -27,8 +28,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kData = NMESH_SHARED_DATA_DIR;
-constexpr std::size_t kBunnyPoints = 35947;  // README of the shared data
+using nmesh::test::kBunnyPoints;
+const std::string kBunnyPly = nmesh::test::kBunnyPly;
 
 struct TempDir : nmesh::test::TempDir {
     TempDir() : nmesh::test::TempDir("nmesh_point_reader_") {}
@@ -156,7 +157,7 @@ void check_error(const std::string& path, std::initializer_list<const char*> fra
 }
 
 std::vector<Vec3> bunny_points() {
-    static const std::vector<Vec3> points = nmesh::read_points(kData + "/bunny.ply").points;
+    static const std::vector<Vec3> points = nmesh::read_points(kBunnyPly).points;
     return points;
 }
 
@@ -167,7 +168,7 @@ std::vector<Vec3> bunny_points() {
 
 TEST_CASE("read_points reads bunny.ply: 35,947 points inside the documented bounding box") {
     nmesh::PointReadReport report;
-    const nmesh::PointCloud cloud = nmesh::read_points(kData + "/bunny.ply", &report);
+    const nmesh::PointCloud cloud = nmesh::read_points(kBunnyPly, &report);
     CHECK(cloud.size() == kBunnyPoints);
     CHECK(report.format == "ply binary_little_endian");
     CHECK(report.points_read == kBunnyPoints);
@@ -184,34 +185,40 @@ TEST_CASE("read_points reads bunny.ply: 35,947 points inside the documented boun
 }
 
 TEST_CASE("bunny.xyz (shortest float text) reads back bit for bit as bunny.ply") {
+    TempDir dir;
+    nmesh::test::write_bunny_xyz(dir.at("bunny.xyz"));
     nmesh::PointReadReport report;
-    const nmesh::PointCloud text = nmesh::read_points(kData + "/bunny.xyz", &report);
+    const nmesh::PointCloud text = nmesh::read_points(dir.at("bunny.xyz"), &report);
     CHECK(report.format == "xyz");
     CHECK(same_points(text.points, bunny_points()));
 }
 
-TEST_CASE("bunny_mesh.ply (ASCII, extra properties, faces): vertex i is point i of bunny.ply") {
-    const nmesh::PointCloud mesh_points = nmesh::read_points(kData + "/bunny_mesh.ply");
+TEST_CASE("an ASCII PLY shaped like the Stanford meshes (extra properties, faces): vertex i is point i of bunny.ply") {
+    TempDir dir;
+    const std::string path = dir.at("bunny_mesh.ply");
+    nmesh::test::write_bunny_ascii_mesh(path);
+    const nmesh::PointCloud mesh_points = nmesh::read_points(path);
     CHECK(same_points(mesh_points.points, bunny_points()));
 
-    const nmesh::FileInfo info = nmesh::inspect_file(kData + "/bunny_mesh.ply");
+    const nmesh::FileInfo info = nmesh::inspect_file(path);
+    const std::uint64_t faces = nmesh::test::bunny_strip_faces().size();
     CHECK(info.format == "ply");
     CHECK(info.encoding == "ascii");
-    CHECK(info.file_size == 3033193);
+    CHECK(info.file_size == fs::file_size(path));
     REQUIRE(info.elements.size() == 2);
     CHECK(info.elements[0].name == "vertex");
     CHECK(info.elements[0].count == kBunnyPoints);
     CHECK(info.elements[0].properties ==
           std::vector<std::string>{"float x", "float y", "float z", "float confidence", "float intensity"});
     CHECK(info.elements[1].name == "face");
-    CHECK(info.elements[1].count == 69451);
+    CHECK(info.elements[1].count == faces);
     CHECK(info.elements[1].properties == std::vector<std::string>{"list uchar int vertex_indices"});
     CHECK(info.points == kBunnyPoints);
-    CHECK(info.faces == 69451);
+    CHECK(info.faces == faces);
 }
 
 TEST_CASE("inspect_file summarises bunny.ply") {
-    const nmesh::FileInfo info = nmesh::inspect_file(kData + "/bunny.ply");
+    const nmesh::FileInfo info = nmesh::inspect_file(kBunnyPly);
     CHECK(info.format == "ply");
     CHECK(info.encoding == "binary_little_endian");
     CHECK(info.file_size == 431483);
@@ -316,7 +323,7 @@ TEST_CASE("PLY: comments, other elements (also before vertex), lists and extra p
 TEST_CASE("binary PLY: bodies larger than the read buffer give the same points in both byte orders") {
     // 90,000 records of 15 bytes (float x, y, z, uchar r, g, b) span two 1 MiB buffers with a
     // record split across the buffer end; the float-xyz-only file takes the direct-read path.
-    // (ASCII lines across buffer ends: bunny_mesh.ply above, 3 MB.)
+    // (ASCII lines across buffer ends: the Stanford-shaped bunny_mesh.ply above, 2.5 MB.)
     const std::vector<Vec3> points = random_points(90000, 7);
     PlyElem colored{"vertex",
                     {{"float", "x", ""},
@@ -620,7 +627,7 @@ TEST_CASE("error: a header declaring billions of records in a tiny file is refus
 
 TEST_CASE("error: truncated binary body, and data after the last record") {
     TempDir dir;
-    std::ifstream in(kData + "/bunny.ply", std::ios::binary);
+    std::ifstream in(kBunnyPly, std::ios::binary);
     const std::string bunny((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     REQUIRE(bunny.size() == 431483);
     check_error(dir.file("cut.ply", bunny.substr(0, bunny.size() - 5)),

@@ -18,7 +18,7 @@
 
 using namespace nmesh;
 using nmesh::test::require_closed_manifold;
-using nmesh::test::shared_bunny;
+using nmesh::test::bundled_bunny;
 using nmesh::test::sphere_cloud;
 
 TEST_CASE("a sphere sample reconstructs to a sphere") {
@@ -255,7 +255,7 @@ TEST_CASE("step 8 removes exactly the vertices that won no signal in the period"
 }
 
 TEST_CASE("the real bunny reconstructs to a closed genus-0 manifold close to the scan") {
-    const PointCloud bunny = shared_bunny();
+    const PointCloud bunny = bundled_bunny();
     REQUIRE(bunny.size() == 35947);
     Parameters p;
     p.target_vertices = 5000;

@@ -1,0 +1,351 @@
+#include "nmesh/geometry/triangle_intersection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "nmesh/error.h"
+#include "nmesh/geometry/exact_predicates.h"
+
+namespace nmesh {
+
+namespace {
+
+using Face = std::array<std::uint32_t, 3>;
+
+// ---- planar tests ------------------------------------------------------------------------------
+// Points lying in one plane are compared in their projection on a coordinate plane on which the
+// triangle at hand projects to a non-degenerate triangle: that projection maps the plane onto the
+// coordinate plane one to one (an affine bijection), so it keeps every incidence.
+
+// The projection dropping axis k (0: x, 1: y, 2: z).
+Point2d project(const Vec3& v, int k) {
+    switch (k) {
+        case 0: return {double(v.y), double(v.z)};
+        case 1: return {double(v.x), double(v.z)};
+        default: return {double(v.x), double(v.y)};
+    }
+}
+
+// The sign of the projection of abc with axis k dropped.
+int projected_orientation(const Vec3& a, const Vec3& b, const Vec3& c, int k) {
+    return orient2d(project(a, k), project(b, k), project(c, k));
+}
+
+// An axis whose dropping leaves abc a non-degenerate triangle, or -1 when abc is degenerate.
+int projection_axis(const Vec3& a, const Vec3& b, const Vec3& c) {
+    for (int k = 2; k >= 0; --k)
+        if (projected_orientation(a, b, c, k) != 0) return k;
+    return -1;
+}
+
+bool mixed_signs(int s1, int s2, int s3) {
+    return (s1 > 0 || s2 > 0 || s3 > 0) && (s1 < 0 || s2 < 0 || s3 < 0);
+}
+
+// Whether c, collinear with a and b, lies on the closed segment ab: within its bounding box.
+bool on_segment_2d(const Point2d& a, const Point2d& b, const Point2d& c) {
+    return std::min(a.x, b.x) <= c.x && c.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= c.y &&
+           c.y <= std::max(a.y, b.y);
+}
+
+// Whether the closed segments pq and rs meet: they cross properly, or an endpoint of one lies on
+// the other.
+bool segments_meet_2d(const Point2d& p, const Point2d& q, const Point2d& r, const Point2d& s) {
+    const int d1 = orient2d(r, s, p), d2 = orient2d(r, s, q);
+    const int d3 = orient2d(p, q, r), d4 = orient2d(p, q, s);
+    if (d1 * d2 < 0 && d3 * d4 < 0) return true;
+    return (d1 == 0 && on_segment_2d(r, s, p)) || (d2 == 0 && on_segment_2d(r, s, q)) ||
+           (d3 == 0 && on_segment_2d(p, q, r)) || (d4 == 0 && on_segment_2d(p, q, s));
+}
+
+// Whether p lies in the closed non-degenerate triangle abc, of either orientation: its three
+// edge signs (the barycentric coordinates up to a common factor) do not disagree.
+bool point_in_triangle_2d(const Point2d& p, const Point2d& a, const Point2d& b, const Point2d& c) {
+    return !mixed_signs(orient2d(a, b, p), orient2d(b, c, p), orient2d(c, a, p));
+}
+
+// Whether the segment pq, lying in the plane of the triangle abc, meets it: an endpoint inside, or
+// the segment crossing an edge.
+bool coplanar_segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
+                                     const Vec3& c) {
+    const int k = projection_axis(a, b, c);
+    if (k < 0) return false;
+    const Point2d p2 = project(p, k), q2 = project(q, k);
+    const Point2d a2 = project(a, k), b2 = project(b, k), c2 = project(c, k);
+    return point_in_triangle_2d(p2, a2, b2, c2) || point_in_triangle_2d(q2, a2, b2, c2) ||
+           segments_meet_2d(p2, q2, a2, b2) || segments_meet_2d(p2, q2, b2, c2) ||
+           segments_meet_2d(p2, q2, c2, a2);
+}
+
+// ---- segment and triangle ----------------------------------------------------------------------
+
+// Whether the closed segment pq meets the closed triangle abc, given sp = orient3d(a, b, c, p) and
+// sq = orient3d(a, b, c, q).
+bool segment_meets_triangle(const Vec3& p, const Vec3& q, int sp, int sq, const Vec3& a, const Vec3& b,
+                            const Vec3& c) {
+    if (sp == sq) {
+        if (sp != 0) return false;  // both strictly on one side of the plane
+        return coplanar_segment_meets_triangle(p, q, a, b, c);
+    }
+    // The segment meets the plane in exactly one point, and the line pq is not parallel to it.
+    // That point is in the triangle iff the line passes on no two opposite sides of its edges:
+    // the sign of orient3d(p, q, a, b) is that of the point's turn with the edge ab in the plane,
+    // times a factor common to the three edges (moving p and q along their line does not change
+    // the determinant).
+    return !mixed_signs(orient3d(p, q, a, b), orient3d(p, q, b, c), orient3d(p, q, c, a));
+}
+
+// Whether some edge of the triangle abc meets the triangle def, given the sides sa, sb, sc of a,
+// b, c with respect to the plane of def.
+bool edges_meet_triangle(const Vec3& a, const Vec3& b, const Vec3& c, int sa, int sb, int sc,
+                         const Vec3& d, const Vec3& e, const Vec3& f) {
+    return segment_meets_triangle(a, b, sa, sb, d, e, f) || segment_meets_triangle(b, c, sb, sc, d, e, f) ||
+           segment_meets_triangle(c, a, sc, sa, d, e, f);
+}
+
+// ---- faces of a mesh ---------------------------------------------------------------------------
+
+// Whether the triangles pqa and pqb, sharing the edge pq, overlap off it. Out of one plane they
+// meet only on the line of the two planes, where each is just the edge. In one plane each lies
+// in the closed half-plane of its opposite vertex: on opposite sides these meet only on the line
+// pq; on the same side both triangles contain points near the middle of the edge on that side.
+bool folded(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b) {
+    if (orient3d(p, q, a, b) != 0) return false;
+    const int k = projection_axis(p, q, a);
+    return k >= 0 && projected_orientation(p, q, a, k) == projected_orientation(p, q, b, k);
+}
+
+bool face_degenerate(const Vec3* positions, const Face& t) {
+    return t[0] == t[1] || t[1] == t[2] || t[2] == t[0] ||
+           triangle_degenerate(positions[t[0]], positions[t[1]], positions[t[2]]);
+}
+
+// faces_intersect for faces known to be non-degenerate.
+bool nondegenerate_faces_intersect(const Vec3* positions, const Face& t, const Face& u) {
+    bool t_shared[3] = {false, false, false}, u_shared[3] = {false, false, false};
+    int shared = 0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (t[i] == u[j]) {
+                t_shared[i] = u_shared[j] = true;
+                ++shared;
+            }
+    const auto at = [positions](std::uint32_t v) -> const Vec3& { return positions[v]; };
+    switch (shared) {
+        case 0:
+            return triangles_intersect_exact(at(t[0]), at(t[1]), at(t[2]), at(u[0]), at(u[1]), at(u[2]));
+        case 1: {
+            // t = (v, a, b), u = (v, c, d). Beyond v iff ab meets u or cd meets t. If x != v is
+            // common, the ray from v through x leaves t at a point y of ab (t is the union of the
+            // segments from v to the points of ab) and leaves u at a point z of cd; both [v, y]
+            // and [v, z] lie on the ray and contain x, so the nearer of y and z lies in both
+            // triangles. Conversely no point of ab or cd is v.
+            const int i = t_shared[0] ? 0 : (t_shared[1] ? 1 : 2);
+            const int j = u_shared[0] ? 0 : (u_shared[1] ? 1 : 2);
+            const Vec3 &a = at(t[(i + 1) % 3]), &b = at(t[(i + 2) % 3]);
+            const Vec3 &c = at(u[(j + 1) % 3]), &d = at(u[(j + 2) % 3]);
+            return segment_intersects_triangle(a, b, at(u[0]), at(u[1]), at(u[2])) ||
+                   segment_intersects_triangle(c, d, at(t[0]), at(t[1]), at(t[2]));
+        }
+        case 2: {
+            const int i = !t_shared[0] ? 0 : (!t_shared[1] ? 1 : 2);
+            const int j = !u_shared[0] ? 0 : (!u_shared[1] ? 1 : 2);
+            return folded(at(t[(i + 1) % 3]), at(t[(i + 2) % 3]), at(t[i]), at(u[j]));
+        }
+        default:
+            return true;  // the same face twice
+    }
+}
+
+// ---- the broad phase ---------------------------------------------------------------------------
+
+// A face's bounding box and the range of grid cells it covers.
+struct FaceBox {
+    float lo[3], hi[3];
+    int cell_lo[3], cell_hi[3];
+};
+
+bool boxes_overlap(const FaceBox& a, const FaceBox& b) {
+    for (int k = 0; k < 3; ++k)
+        if (a.lo[k] > b.hi[k] || b.lo[k] > a.hi[k]) return false;
+    return true;
+}
+
+// Calls visit(s, t) for every intersecting pair of faces s < t, in increasing order of (s, t),
+// until visit returns false.
+//
+// The non-degenerate faces are binned by their bounding boxes into a uniform grid of cubic cells
+// as wide as the mean largest box side (coarser if that would make more than about 8 cells per
+// face), counting-sorted so that each cell lists its faces in increasing order. Each face s then
+// looks at the faces t > s in the cells its box covers. Closed boxes that overlap share the cell
+// that holds the lower corner of their overlap: the cell of a coordinate is monotonic in it, so
+// that cell is, axis by axis, the larger of the two boxes' first cells. A pair is tested only in
+// that cell, hence once.
+template <class Visit>
+void for_each_intersecting_pair(const IndexedMesh& mesh, Visit&& visit) {
+    const std::size_t face_count = mesh.triangles.size();
+    const std::size_t vertex_count = mesh.positions.size();
+    if (face_count > std::size_t(UINT32_MAX))
+        throw InputError("self_intersecting_pairs: more than 2^32 - 1 triangles");
+    const Vec3* positions = mesh.positions.data();
+
+    std::vector<std::uint32_t> faces;  // the faces tested, increasing
+    faces.reserve(face_count);
+    for (std::size_t f = 0; f < face_count; ++f) {
+        const Face& t = mesh.triangles[f];
+        for (std::uint32_t v : t)
+            if (v >= vertex_count)
+                throw InputError("self_intersecting_pairs: triangle " + std::to_string(f) + " refers to vertex " +
+                                 std::to_string(v) + " of " + std::to_string(vertex_count));
+        bool finite = true;
+        for (std::uint32_t v : t)
+            finite = finite && std::isfinite(positions[v].x) && std::isfinite(positions[v].y) &&
+                     std::isfinite(positions[v].z);
+        if (finite && !face_degenerate(positions, t)) faces.push_back(std::uint32_t(f));
+    }
+    const std::size_t n = faces.size();
+    if (n < 2) return;
+
+    std::vector<FaceBox> boxes(n);
+    double lower[3], upper[3], side_sum = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        lower[k] = HUGE_VAL;
+        upper[k] = -HUGE_VAL;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        const Face& t = mesh.triangles[faces[i]];
+        FaceBox& b = boxes[i];
+        double side = 0.0;
+        for (int k = 0; k < 3; ++k) {
+            const float p = positions[t[0]][k], q = positions[t[1]][k], r = positions[t[2]][k];
+            b.lo[k] = std::min({p, q, r});
+            b.hi[k] = std::max({p, q, r});
+            lower[k] = std::min(lower[k], double(b.lo[k]));
+            upper[k] = std::max(upper[k], double(b.hi[k]));
+            side = std::max(side, double(b.hi[k]) - double(b.lo[k]));
+        }
+        side_sum += side;
+    }
+
+    // A non-degenerate face has a box of positive size, so the cell width is positive.
+    double width = side_sum / double(n);
+    const double max_cells = 8.0 * double(n) + 64.0;
+    double dims[3];
+    for (;;) {
+        double cells = 1.0;
+        for (int k = 0; k < 3; ++k) {
+            dims[k] = std::floor((upper[k] - lower[k]) / width) + 1.0;
+            cells *= dims[k];
+        }
+        if (cells <= max_cells) break;
+        width *= std::max(1.01, std::cbrt(cells / max_cells));
+    }
+    const int dim[3] = {int(dims[0]), int(dims[1]), int(dims[2])};
+    const double inverse_width = 1.0 / width;
+    const auto cell_of = [&](float x, int k) {
+        const double c = std::floor((double(x) - lower[k]) * inverse_width);
+        return int(std::clamp(c, 0.0, double(dim[k] - 1)));
+    };
+    const auto cell_id = [&](int x, int y, int z) {
+        return (std::size_t(z) * std::size_t(dim[1]) + std::size_t(y)) * std::size_t(dim[0]) + std::size_t(x);
+    };
+
+    // Counting sort of (cell, face) entries by cell, faces increasing within a cell.
+    std::vector<std::size_t> start(std::size_t(dim[0]) * std::size_t(dim[1]) * std::size_t(dim[2]) + 1, 0);
+    for (FaceBox& b : boxes) {
+        for (int k = 0; k < 3; ++k) {
+            b.cell_lo[k] = cell_of(b.lo[k], k);
+            b.cell_hi[k] = cell_of(b.hi[k], k);
+        }
+        for (int z = b.cell_lo[2]; z <= b.cell_hi[2]; ++z)
+            for (int y = b.cell_lo[1]; y <= b.cell_hi[1]; ++y)
+                for (int x = b.cell_lo[0]; x <= b.cell_hi[0]; ++x) ++start[cell_id(x, y, z) + 1];
+    }
+    for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
+    std::vector<std::uint32_t> entries(start.back());
+    {
+        std::vector<std::size_t> next(start.begin(), start.end() - 1);
+        for (std::size_t i = 0; i < n; ++i) {
+            const FaceBox& b = boxes[i];
+            for (int z = b.cell_lo[2]; z <= b.cell_hi[2]; ++z)
+                for (int y = b.cell_lo[1]; y <= b.cell_hi[1]; ++y)
+                    for (int x = b.cell_lo[0]; x <= b.cell_hi[0]; ++x)
+                        entries[next[cell_id(x, y, z)]++] = std::uint32_t(i);
+        }
+    }
+
+    std::vector<std::uint32_t> found;
+    for (std::size_t i = 0; i < n; ++i) {
+        const FaceBox& a = boxes[i];
+        const Face& t = mesh.triangles[faces[i]];
+        found.clear();
+        for (int z = a.cell_lo[2]; z <= a.cell_hi[2]; ++z)
+            for (int y = a.cell_lo[1]; y <= a.cell_hi[1]; ++y)
+                for (int x = a.cell_lo[0]; x <= a.cell_hi[0]; ++x) {
+                    const std::size_t c = cell_id(x, y, z);
+                    const std::uint32_t* end = entries.data() + start[c + 1];
+                    for (const std::uint32_t* e = std::upper_bound(entries.data() + start[c], end, std::uint32_t(i));
+                         e != end; ++e) {
+                        const FaceBox& b = boxes[*e];
+                        if (std::max(a.cell_lo[0], b.cell_lo[0]) != x || std::max(a.cell_lo[1], b.cell_lo[1]) != y ||
+                            std::max(a.cell_lo[2], b.cell_lo[2]) != z)
+                            continue;
+                        if (!boxes_overlap(a, b)) continue;
+                        if (nondegenerate_faces_intersect(positions, t, mesh.triangles[faces[*e]])) found.push_back(*e);
+                    }
+                }
+        std::sort(found.begin(), found.end());
+        for (std::uint32_t j : found)
+            if (!visit(faces[i], faces[j])) return;
+    }
+}
+
+}  // namespace
+
+bool triangle_degenerate(const Vec3& a, const Vec3& b, const Vec3& c) { return projection_axis(a, b, c) < 0; }
+
+bool segment_intersects_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
+                                 const Vec3& c) {
+    return segment_meets_triangle(p, q, orient3d(a, b, c, p), orient3d(a, b, c, q), a, b, c);
+}
+
+bool triangles_intersect_exact(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d,
+                               const Vec3& e, const Vec3& f) {
+    const int sd = orient3d(a, b, c, d), se = orient3d(a, b, c, e), sf = orient3d(a, b, c, f);
+    if (sd == se && se == sf && sd != 0) return false;  // def strictly on one side of abc's plane
+    const int sa = orient3d(d, e, f, a), sb = orient3d(d, e, f, b), sc = orient3d(d, e, f, c);
+    if (sa == sb && sb == sc && sa != 0) return false;
+    // Out of one plane, the common part lies on the line of the two planes, where each triangle
+    // is a segment with its ends on its edges; the overlap of the two segments, if any, has an end
+    // that is an end of one of them, so an edge of one triangle meets the other. In one plane,
+    // either the boundaries meet or one triangle contains the other: again an edge meets.
+    return edges_meet_triangle(d, e, f, sd, se, sf, a, b, c) || edges_meet_triangle(a, b, c, sa, sb, sc, d, e, f);
+}
+
+bool faces_intersect(const Vec3* positions, std::array<std::uint32_t, 3> t, std::array<std::uint32_t, 3> u) {
+    if (face_degenerate(positions, t) || face_degenerate(positions, u)) return false;
+    return nondegenerate_faces_intersect(positions, t, u);
+}
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(const IndexedMesh& mesh,
+                                                                               std::size_t max_pairs) {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    if (max_pairs == 0) return pairs;
+    for_each_intersecting_pair(mesh, [&](std::uint32_t s, std::uint32_t t) {
+        pairs.emplace_back(s, t);
+        return pairs.size() < max_pairs;
+    });
+    return pairs;
+}
+
+std::size_t count_self_intersections(const IndexedMesh& mesh) {
+    std::size_t count = 0;
+    for_each_intersecting_pair(mesh, [&](std::uint32_t, std::uint32_t) {
+        ++count;
+        return true;
+    });
+    return count;
+}
+
+}  // namespace nmesh
