@@ -1,0 +1,285 @@
+"""nmesh: a closed triangle mesh from a point cloud (Neural Meshes ES), from Python.
+
+    import nmesh
+
+    points = nmesh.read_points("bunny.ply")            # (N, 3) float32
+    result = nmesh.reconstruct(points, 30000, seed=1)  # the learning runs without the GIL
+    print(result.stats["seconds"], result.stats["metrics"]["hausdorff_rel"])
+    nmesh.write_mesh("bunny_mesh.ply", result.vertices, result.faces)
+
+The functions take any array-like of shape (N, 3) with real numbers; a C-contiguous float32
+NumPy array is read in place (no copy), anything else is converted once. Errors of the library
+are Python's: a bad parameter raises ValueError naming it, a file that cannot be read or written
+OSError (the message starts with the path), points that cannot be reconstructed (fewer than 4
+distinct, all on one line, a NaN or infinite coordinate) nmesh.InputError, a ValueError.
+"""
+
+from __future__ import annotations
+
+import json
+import numbers
+import operator
+import os
+from dataclasses import dataclass
+from typing import Any, Callable, Dict, Optional, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+try:
+    from . import _nmesh
+except ImportError as error:  # the source tree's python/nmesh, or a build without the extension
+    raise ImportError(
+        "nmesh: the compiled extension nmesh._nmesh is missing: configure with -DNMESH_BUILD_PYTHON=ON, "
+        "build, cmake --install, and put <prefix>/lib/python3/dist-packages on PYTHONPATH"
+    ) from error
+
+from ._nmesh import InputError
+
+__all__ = [
+    "InputError",
+    "ProgressCallback",
+    "Reconstruction",
+    "evaluate",
+    "read_mesh",
+    "read_points",
+    "reconstruct",
+    "write_mesh",
+]
+
+__version__: str = _nmesh.__version__
+
+#: The type of a path argument: str, bytes or os.PathLike.
+PathArg = Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
+
+#: progress(vertices, target_vertices, seconds) -> continue? (None or True continue, False cancels)
+ProgressCallback = Callable[[int, int, float], Optional[bool]]
+
+_UINT32_MAX = 2**32 - 1
+_UINT64_MAX = 2**64 - 1
+
+
+@dataclass(frozen=True, eq=False)
+class Reconstruction:
+    """The result of reconstruct().
+
+    vertices: (V, 3) float32, in the coordinates of the input points.
+    faces: (F, 3) int32, counter-clockwise seen from outside; a closed genus-0 2-manifold.
+    stats: the record `nmesh reconstruct --stats` writes, as a dict (its "input" is "<array>"):
+        seed, parameters, vertices, faces, the counts and timings of the learning ("seconds" is
+        the learning time, "seconds_finish" the finishing stage's), cancelled, and "metrics",
+        the quality report of `nmesh eval` of this mesh against the whole cloud.
+    cancelled: True when the progress callback returned False: the mesh is the one reached so far.
+    """
+
+    vertices: np.ndarray
+    faces: np.ndarray
+    stats: Dict[str, Any]
+    cancelled: bool
+
+    def __repr__(self) -> str:
+        return (
+            f"Reconstruction(vertices={len(self.vertices)}, faces={len(self.faces)}, "
+            f"seconds={self.stats.get('seconds')}, cancelled={self.cancelled})"
+        )
+
+
+def _path(path: PathArg) -> bytes:
+    """The path as the bytes the operating system sees (any str, bytes or os.PathLike)."""
+    if not isinstance(path, (str, bytes, os.PathLike)):
+        raise TypeError(f"path must be str, bytes or os.PathLike, not {type(path).__name__}")
+    return os.fsencode(path)
+
+
+def _rows_of_three(array: npt.ArrayLike, name: str) -> np.ndarray:
+    """`array` as an ndarray of real numbers of shape (N, 3), not yet converted; the checks."""
+    a = np.asarray(array)  # no copy for an ndarray (a subclass gives a view of the same memory)
+    if a.dtype.kind == "c":
+        raise TypeError(f"{name} must hold real numbers, not complex ({a.dtype})")
+    if a.dtype.kind not in "fiu":  # bool, object, strings, bytes, datetimes, structured arrays...
+        raise TypeError(f"{name} must hold real numbers (an integer or floating-point array), not {a.dtype}")
+    if a.ndim != 2 or a.shape[1] != 3:
+        raise ValueError(f"{name} must be an array of shape (N, 3), got shape {a.shape}")
+    return a
+
+
+def _as_points(points: npt.ArrayLike, name: str = "points") -> np.ndarray:
+    """`points` as a C-contiguous, aligned float32 (N, 3) array: the same object when it already
+    is one (reconstruct then reads the caller's buffer in place), else one converted copy.
+    Values beyond float32's range become infinite (as the file readers do), which the library
+    refuses as non-finite (InputError)."""
+    a = _rows_of_three(points, name)
+    with np.errstate(over="ignore", invalid="ignore"):  # overflow to inf is reported by the library
+        return np.require(a, dtype=np.float32, requirements=("C", "A"))
+
+
+def _as_faces(faces: npt.ArrayLike, vertex_count: int) -> np.ndarray:
+    """`faces` as a C-contiguous uint32 (F, 3) array, every index checked to be in [0, V): so
+    that no int64 index wraps around to a valid one on the way to uint32."""
+    f = np.asarray(faces)
+    if f.dtype.kind not in "iu":
+        raise TypeError(f"faces must be an integer array, not {f.dtype}")
+    if f.ndim != 2 or f.shape[1] != 3:
+        raise ValueError(f"faces must be an array of shape (F, 3), got shape {f.shape}")
+    if f.size:
+        low, high = int(f.min()), int(f.max())
+        if low < 0 or high >= vertex_count:
+            bad = low if low < 0 else high
+            raise ValueError(f"faces: index {bad} is out of range for {vertex_count} vertices")
+    return np.require(f, dtype=np.uint32, requirements=("C", "A"))
+
+
+def _count(name: str, value: Any, maximum: int = _UINT32_MAX) -> int:
+    """An integer keyword in [0, maximum] (the library's unsigned fields); its finer range is
+    checked by the library (ValueError naming the parameter)."""
+    if isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be an integer, not bool")
+    try:
+        n = operator.index(value)  # int, NumPy integers; not floats or strings
+    except TypeError:
+        raise TypeError(f"{name} must be an integer, not {type(value).__name__}") from None
+    if not 0 <= n <= maximum:
+        raise ValueError(f"invalid parameter {name}: must be in [0, {maximum}], got {n}")
+    return n
+
+
+def _real(name: str, value: Any) -> float:
+    """A real-valued keyword (its range is checked by the library)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a real number, not {type(value).__name__}")
+    return float(value)
+
+
+def _flag(name: str, value: Any) -> bool:
+    """A True/False keyword: only bools (a string such as "false" would be truthy)."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be True or False, not {type(value).__name__}")
+    return bool(value)
+
+
+def reconstruct(
+    points: npt.ArrayLike,
+    vertices: int = 10000,
+    *,
+    topology: str = "sphere",
+    alpha_w: float = 0.08,
+    alpha_n: float = 0.01,
+    alpha: float = 0.95,
+    cvs: int = 100,
+    cec: int = 20,
+    edge_swap: bool = True,
+    finish: bool = True,
+    seed: int = 1,
+    progress: Optional[ProgressCallback] = None,
+    finish_rounds: int = 10,
+    fit_rounds: int = 0,
+    settle: float = 0.0,
+    index_points_per_vertex: int = 64,
+) -> Reconstruction:
+    """Learns a closed triangle mesh of exactly `vertices` vertices from the points.
+
+    The same points, parameters and seed give the same mesh, bit for bit, as
+    `nmesh reconstruct IN -o OUT --vertices N --seed S` (written with write_mesh, the same file).
+
+    points: array-like of shape (N, 3), real numbers. A C-contiguous float32 ndarray is read in
+        place, without a copy (do not modify it from another thread meanwhile); any other array
+        (float64, integers, a non-contiguous view, a list) is converted to float32 once.
+    vertices: the target vertex count (>= 4). The defaults of the other parameters are Table 2 of
+        the Neural Meshes ES paper; the command-line tool's --help explains each.
+    topology: the topology of the mesh. Only "sphere" (a closed genus-0 surface) exists in the
+        library today; other values raise ValueError. Other modes come with the library.
+    alpha_w, alpha_n: learning rates of the winner vertex and of its neighbours.
+    alpha: the signal counter decay per iteration.
+    cvs: a vertex split every `cvs` iterations.  cec: inactive vertices removed every cec * n.
+    edge_swap: Neural Meshes ES (False: basic Neural Meshes).
+    finish: the finishing stage (flips, relaxation onto the cloud, repair of folds).
+    seed: the random seed (an integer in [0, 2**64 - 1]).
+    progress: called about every 65,536 iterations and once when the learning ends, as
+        progress(vertices, target_vertices, seconds), from the thread that called reconstruct,
+        with the GIL held. Returning False (or any false value but None) cancels: reconstruct
+        then returns the mesh reached so far with `cancelled` True (no exception). An exception
+        raised by the callback cancels the learning and propagates out of reconstruct.
+    finish_rounds, fit_rounds: the finishing stage's regularisation and centroid-fit rounds.
+    settle: settle * n iterations without topology changes once the target size is reached.
+    index_points_per_vertex: cloud points indexed per target vertex (0: all of them).
+
+    The learning and the measuring run with the GIL released. Ctrl-C (SIGINT, in the main
+    thread) cancels a running reconstruct and raises KeyboardInterrupt.
+
+    Returns a Reconstruction: vertices, faces, stats (the --stats record, with the quality
+    metrics of the mesh against the whole cloud, as the command-line tool computes them) and
+    cancelled.
+
+    Raises ValueError naming the parameter for a parameter out of range, TypeError or ValueError
+    for points of the wrong dtype or shape, nmesh.InputError (a ValueError) for points that
+    cannot be reconstructed, including any NaN or infinite coordinate.
+    """
+    if not isinstance(topology, str):
+        raise TypeError(f"topology must be a str, not {type(topology).__name__}")
+    if topology != "sphere":
+        raise ValueError(
+            f"invalid parameter topology: {topology!r}; only 'sphere' is available "
+            "(other topologies come with the library)"
+        )
+    if progress is not None and not callable(progress):
+        raise TypeError(f"progress must be callable or None, not {type(progress).__name__}")
+    cloud = _as_points(points)
+    vertices_out, faces_out, stats_json, cancelled = _nmesh.reconstruct(
+        cloud,
+        target_vertices=_count("vertices", vertices),
+        alpha_w=_real("alpha_w", alpha_w),
+        alpha_n=_real("alpha_n", alpha_n),
+        alpha=_real("alpha", alpha),
+        cvs=_count("cvs", cvs),
+        cec=_count("cec", cec),
+        edge_swap=_flag("edge_swap", edge_swap),
+        finish=_flag("finish", finish),
+        seed=_count("seed", seed, _UINT64_MAX),
+        settle=_real("settle", settle),
+        finish_rounds=_count("finish_rounds", finish_rounds),
+        fit_rounds=_count("fit_rounds", fit_rounds),
+        index_points_per_vertex=_count("index_points_per_vertex", index_points_per_vertex),
+        progress=progress,
+        metrics=True,
+    )
+    return Reconstruction(vertices_out, faces_out, json.loads(stats_json), cancelled)
+
+
+def read_points(path: PathArg) -> np.ndarray:
+    """The points of a file (.ply, .xyz/.txt/.pts/.csv, .obj, .off) as an (N, 3) float32 array,
+    in file order; points with a NaN or infinite coordinate are dropped. Raises OSError (the
+    message starts with the path) for a file that is missing, unreadable or malformed."""
+    return _nmesh.read_points(_path(path))
+
+
+def read_mesh(path: PathArg) -> Tuple[np.ndarray, np.ndarray]:
+    """(vertices (V, 3) float32, faces (F, 3) int32) of a .ply, .obj or .off file (polygons are
+    fan-triangulated; a point file gives no faces). Raises OSError as read_points does."""
+    return _nmesh.read_mesh(_path(path))
+
+
+def write_mesh(path: PathArg, vertices: npt.ArrayLike, faces: npt.ArrayLike, *, ascii: bool = False) -> None:
+    """Writes a mesh to a .ply (binary little-endian, or ASCII with ascii=True), .obj or .off
+    file, chosen by the extension; atomically (the file is either replaced whole or untouched).
+    read_mesh gives the same vertices and faces back, bit for bit.
+
+    vertices: (V, 3) real numbers (written as float32); faces: (F, 3) integers in [0, V).
+    Raises OSError for an unknown extension or a file that cannot be written, ValueError for a
+    non-finite coordinate or a face index out of range, TypeError for non-integer faces."""
+    v = _as_points(vertices, "vertices")
+    f = _as_faces(faces, len(v))
+    _nmesh.write_mesh(_path(path), v, f, _flag("ascii", ascii))
+
+
+def evaluate(points: npt.ArrayLike, vertices: npt.ArrayLike, faces: npt.ArrayLike) -> Dict[str, Any]:
+    """The metrics of `nmesh eval POINTS MESH --json` as a dict: DM(X,T), point-to-surface and
+    surface-to-cloud distances, Hausdorff (each also relative to the cloud's bounding-box
+    diagonal, the *_rel keys), topology (closed, manifold, euler, genus, components,
+    self_intersections...) and triangle quality. Deterministic (a fixed sampling seed).
+
+    Raises nmesh.InputError for no points, no faces, or a NaN or infinite coordinate."""
+    p = _as_points(points)
+    v = _as_points(vertices, "vertices")
+    f = _as_faces(faces, len(v))
+    result: Dict[str, Any] = json.loads(_nmesh.evaluate(p, v, f))
+    return result
