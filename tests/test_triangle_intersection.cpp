@@ -706,12 +706,14 @@ TEST_CASE("self-intersections: closed meshes have none until a vertex is pushed 
         REQUIRE(top < mesh.positions.size());
         mesh.positions[top] = {0, 0, -9};
         const Pairs expected = brute_force_pairs(mesh);
-        CHECK(expected.size() > 10);
+        CHECK(expected.size() >= 8);
         CHECK(nmesh::self_intersecting_pairs(mesh) == expected);
         // Pushed just onto the bottom vertex's position: the faces touch the bottom at a point.
         mesh.positions[top] = {0, 0, -6};
+        // Inside the octahedron but for that point, each of the top's 4 faces touches each of the
+        // bottom's 4 faces there.
         const Pairs touching = brute_force_pairs(mesh);
-        CHECK(!touching.empty());
+        CHECK(touching.size() == 16);
         CHECK(nmesh::self_intersecting_pairs(mesh) == touching);
     }
     SUBCASE("icosphere (floats on the unit sphere)") {
@@ -724,7 +726,7 @@ TEST_CASE("self-intersections: closed meshes have none until a vertex is pushed 
         CHECK(nmesh::self_intersecting_pairs(mesh) == expected);
         mesh.positions[0] = mesh.positions[0] * 4.0f;  // beyond the far side
         expected = brute_force_pairs(mesh);
-        CHECK(expected.size() > 10);
+        CHECK(expected.size() >= 5);
         CHECK(nmesh::self_intersecting_pairs(mesh) == expected);
     }
     SUBCASE("a face duplicated, and two interpenetrating closed meshes") {
@@ -769,7 +771,7 @@ TEST_CASE("self-intersections: a 60,000-face torus, intact and with a vertex pus
                 expected.emplace_back(std::min(s, t), std::max(s, t));
     std::sort(expected.begin(), expected.end());
     expected.erase(std::unique(expected.begin(), expected.end()), expected.end());
-    CHECK(expected.size() > 10);
+    CHECK(expected.size() >= 6);
     CHECK(nmesh::self_intersecting_pairs(mesh) == expected);
     CHECK(nmesh::count_self_intersections(mesh) == expected.size());
 }

@@ -230,7 +230,7 @@ void for_each_intersecting_pair(const IndexedMesh& mesh, Visit&& visit) {
 
     // A non-degenerate face has a box of positive size, so the cell width is positive.
     double width = side_sum / double(n);
-    const double max_cells = 8.0 * double(n) + 64.0;
+    const double max_cells = std::min(8.0 * double(n) + 64.0, 1073741824.0);
     double dims[3];
     for (;;) {
         double cells = 1.0;
@@ -252,7 +252,8 @@ void for_each_intersecting_pair(const IndexedMesh& mesh, Visit&& visit) {
     };
 
     // Counting sort of (cell, face) entries by cell, faces increasing within a cell.
-    std::vector<std::size_t> start(std::size_t(dim[0]) * std::size_t(dim[1]) * std::size_t(dim[2]) + 1, 0);
+    const std::size_t cell_count = std::size_t(dim[0]) * std::size_t(dim[1]) * std::size_t(dim[2]);
+    std::vector<std::size_t> start(cell_count + 1, 0);
     for (FaceBox& b : boxes) {
         for (int k = 0; k < 3; ++k) {
             b.cell_lo[k] = cell_of(b.lo[k], k);
@@ -275,6 +276,7 @@ void for_each_intersecting_pair(const IndexedMesh& mesh, Visit&& visit) {
         }
     }
 
+    const std::uint32_t* const listed = entries.data();
     std::vector<std::uint32_t> found;
     for (std::size_t i = 0; i < n; ++i) {
         const FaceBox& a = boxes[i];
@@ -284,8 +286,8 @@ void for_each_intersecting_pair(const IndexedMesh& mesh, Visit&& visit) {
             for (int y = a.cell_lo[1]; y <= a.cell_hi[1]; ++y)
                 for (int x = a.cell_lo[0]; x <= a.cell_hi[0]; ++x) {
                     const std::size_t c = cell_id(x, y, z);
-                    const std::uint32_t* end = entries.data() + start[c + 1];
-                    for (const std::uint32_t* e = std::upper_bound(entries.data() + start[c], end, std::uint32_t(i));
+                    const std::uint32_t* const end = listed + start[c + 1];
+                    for (const std::uint32_t* e = std::upper_bound(listed + start[c], end, std::uint32_t(i));
                          e != end; ++e) {
                         const FaceBox& b = boxes[*e];
                         if (std::max(a.cell_lo[0], b.cell_lo[0]) != x || std::max(a.cell_lo[1], b.cell_lo[1]) != y ||
