@@ -694,6 +694,33 @@ TEST_CASE("self-intersections: a random soup of small floats equals the brute fo
     CHECK(nmesh::self_intersecting_pairs(mesh) == expected);
 }
 
+TEST_CASE("self-intersections: a sparse soup of tiny faces (a coarsened grid) equals the brute force") {
+    // Faces a thousandth of the box wide, scattered in 3D: cells that wide would number about a
+    // billion, so the grid must coarsen. Every tenth face gets a crossing partner.
+    Rng rng(16);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f), tiny(-0.001f, 0.001f);
+    std::vector<Vec3> positions;
+    std::vector<Face> faces;
+    for (std::uint32_t f = 0; f < 1000; ++f) {
+        const Vec3 c{unit(rng), unit(rng), unit(rng)};
+        const std::uint32_t base = std::uint32_t(positions.size());
+        positions.push_back(c + Vec3{0.001f, 0, 0});
+        positions.push_back(c + Vec3{0, 0.001f, 0});
+        positions.push_back(c + Vec3{-0.001f, -0.001f, tiny(rng)});
+        faces.push_back({base, base + 1, base + 2});
+        if (f % 10 == 0) {
+            positions.push_back(c + Vec3{0, 0, -0.001f});
+            positions.push_back(c + Vec3{0, 0, 0.001f});
+            positions.push_back(c + Vec3{0.0005f, 0.0005f, 0});
+            faces.push_back({base + 3, base + 4, base + 5});
+        }
+    }
+    const IndexedMesh mesh = make_mesh(positions, faces);
+    const Pairs expected = brute_force_pairs(mesh);
+    CHECK(expected.size() >= 100);
+    CHECK(nmesh::self_intersecting_pairs(mesh) == expected);
+}
+
 TEST_CASE("self-intersections: closed meshes have none until a vertex is pushed through") {
     SUBCASE("subdivided octahedron (integer, many coplanar neighbours)") {
         IndexedMesh mesh = subdivided_octahedron(6);

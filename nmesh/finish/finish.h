@@ -45,13 +45,9 @@
 namespace nmesh {
 
 struct FinishOptions {
-    // Regularisation rounds (flips, then relaxation). 0 skips step 1. Choice: 10. Each round
-    // makes the triangles more regular and moves the vertices further off the scan points the
-    // learning left them on (each vertex is the average of the few points it won), so the
-    // triangles' centroids fall less often between scan points. Measured on the 30,000-vertex
-    // bunny: DM(X,T) 0.000464 after 3 rounds, 0.000447 after 10, 0.000439 after 20, 0.000423
-    // after 100, at about 17 ms a round; the Hausdorff distance, the point-to-surface distance
-    // and the angles are as good or better.
+    // Regularisation rounds (flips, then relaxation). 0 skips step 1. Each round makes the
+    // triangles more regular and moves the vertices further off the scan points the learning left
+    // them on; ten is the default (docs/algorithm.md, Finishing stage).
     int rounds = 10;
     // Flips only between triangles whose normals differ by less than this, before and after.
     float flip_max_dihedral_deg = 20.0f;
@@ -59,13 +55,8 @@ struct FinishOptions {
     // and the repair has neither its pull-back nor its Hausdorff guard).
     bool project = true;
     // Repair (step 2): at most this many rounds; 0 skips the repair. The rounds run only while
-    // defects remain, so the limit changes only the repairs that need more. Choice: 80. The
-    // order in which a round treats the defective triangles follows the face numbering, and how
-    // many rounds a repair takes varies with it, either way: with the faces numbered as the
-    // learning's operations left them, then as Mesh::build_faces numbers them, the 30,000-vertex
-    // bunny with seed 12 needed 25 rounds, then 63; the horse (48,485 points) at 20,000 vertices
-    // with seed 4 needed 47, then 33 (the bunny's other seeds from 1 to 40 fewer than 40 both
-    // ways).
+    // defects remain, so the limit changes only the repairs that need more. How many a repair
+    // needs depends on the face numbering (a round treats the defective triangles in face order).
     int repair_max_rounds = 80;
     // An edge is folded when the normals of its two triangles differ by more than this.
     float fold_dihedral_deg = 120.0f;

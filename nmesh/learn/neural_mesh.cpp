@@ -1,6 +1,6 @@
 // The Neural Meshes learning loop, step by step as section 3 of the Neural Meshes ES paper lists
 // it, plus the edge swap of section 4. Where the papers leave a choice open, the choice is named
-// "Choice:" here and listed in README.md.
+// "Choice:" here and listed in docs/algorithm.md.
 #include "nmesh/learn/neural_mesh.h"
 
 #include <algorithm>
@@ -15,8 +15,26 @@
 
 namespace nmesh {
 namespace {
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Adds the wall time of its scope to *slot; does nothing (reads no clock) when slot is null, as
+// it is unless profiling is on (NeuralMesh::set_profiling).
+class PhaseTimer {
+public:
+    using Clock = std::chrono::steady_clock;
+    explicit PhaseTimer(double* slot) : slot_(slot) {
+        if (slot_) start_ = Clock::now();
+    }
+    ~PhaseTimer() {
+        if (slot_) *slot_ += std::chrono::duration<double>(Clock::now() - start_).count();
+    }
+    PhaseTimer(const PhaseTimer&) = delete;
+    PhaseTimer& operator=(const PhaseTimer&) = delete;
+
+private:
+    double* slot_;
+    Clock::time_point start_;
+};
+
 }  // namespace
 
 NeuralMesh::NeuralMesh(PointSpan points, const BoundingBox& bounds, const Parameters& params,
@@ -169,12 +187,6 @@ void NeuralMesh::update(Vertex w, const Vec3& x, const std::uint32_t* ring, std:
     ++stats_.iterations;
 }
 
-void NeuralMesh::adapt() {
-    if (profiling_) return adapt_profiled();
-    if (mesh_.n_vertices() >= lookahead_from_) return adapt_ahead(next_sample());
-    adapt_to(next_sample());  // step 1
-}
-
 // The nearest vertex to x, the sample the previous iteration looked ahead to: its early answer
 // still holds for every vertex that iteration did not move (their distances are unchanged and
 // were not smaller), so only the moved ones need comparing; if the early answer itself moved
@@ -193,78 +205,73 @@ std::uint32_t NeuralMesh::early_winner(const Vec3& x) const {
     return std::uint32_t(best);
 }
 
-// adapt() for a large mesh: the same steps, with the next sample's winner found before this
-// iteration's smoothing, so that its neighbourhood is fetched while this iteration runs instead
-// of at the start of the next. The answers are the same as adapt_to()'s (early_winner() checks
-// them); only the time of the memory accesses changes.
-void NeuralMesh::adapt_ahead(const Vec3& x) {
-    const bool was_early = early_valid_;
-    const Vertex w(was_early ? early_winner(x) : grid_.nearest(x));  // step 2, eq. (1)
+// Steps 1-6 for a random sample.
+void NeuralMesh::adapt() { adapt_to(next_sample(), true); }
+
+void NeuralMesh::adapt_to(const Vec3& x) { adapt_to(x, false); }
+
+// Steps 2-6 for sample x. `sampled`: x is the sample next_sample() drew, so the winner the previous
+// iteration found for it in advance can be used (early_winner()). From lookahead_from_ vertices
+// on, this iteration does the same for the next sample: its winner is found before this
+// iteration's smoothing, and its neighbourhood fetched while the smoothing runs, instead of at the
+// start of the next iteration. The winners are the same either way; only the time of the memory
+// accesses changes.
+void NeuralMesh::adapt_to(const Vec3& x, bool sampled) {
+    const bool was_early = sampled && early_valid_;
+    Vertex w;
+    {
+        PhaseTimer timer(profiling_ ? &stats_.seconds_winner : nullptr);
+        w = Vertex(was_early ? early_winner(x) : grid_.nearest(x));  // step 2, eq. (1)
+    }
+    PhaseTimer timer(profiling_ ? &stats_.seconds_update : nullptr);
     const bool prefetched = was_early && w.idx == early_;
-    // The next sample's winner, on the vertices as they are before this iteration moves them.
-    early_ = grid_.nearest(ahead_[0]);
-    early_d2_ = squared_distance(ahead_[0], mesh_.position(Vertex(early_)));
-    rings_.prefetch(Vertex(early_));
-    grid_.prefetch_move(early_);   // its slot, for its move at step 3
-    activity_.prefetch(early_);    // its record, for its signal at step 5
-    if (!prefetched) activity_.prefetch(w.idx);  // else asked for a whole iteration ago, as early_
+    const bool ahead = mesh_.n_vertices() >= lookahead_from_;
+    if (ahead) look_ahead();
+    // w's record is needed at step 5: let it load during steps 3-4 (a looked-ahead winner's was
+    // asked for a whole iteration ago).
+    if (!prefetched) activity_.prefetch(w.idx);
     std::uint32_t k = 0;
     const std::uint32_t* ring = ring_of(w, ring_, k);
     update(w, x, ring, k, prefetched);
-    // What moved, for the next iteration's check (the winner and its ring).
-    early_valid_ = k <= RingCache::kCapacity;
+    early_valid_ = ahead && k <= RingCache::kCapacity;
     if (early_valid_) {
+        // What moved, for the next iteration's check (the winner and its ring), then the next
+        // winner's neighbourhood (an uncached ring, count 0, is not fetched: the smoothing will
+        // walk it).
         moved_[0] = w.idx;
         for (std::uint32_t i = 0; i < k; ++i) moved_[i + 1] = ring[i];
         n_moved_ = k + 1;
+        prefetch_neighbourhood(rings_.neighbours(Vertex(early_)), rings_.count(Vertex(early_)));
     }
-    // The next winner's neighbourhood, while the rest of this iteration runs (an uncached ring,
-    // count 0, is not fetched: the smoothing will walk it).
-    prefetch_neighbourhood(rings_.neighbours(Vertex(early_)), rings_.count(Vertex(early_)));
 }
 
-void NeuralMesh::adapt_to(const Vec3& x) {
-    early_valid_ = false;
-    const Vertex w(grid_.nearest(x));  // step 2, eq. (1)
-    activity_.prefetch(w.idx);         // needed at step 5: let it load during steps 3-4
-    std::uint32_t k = 0;
-    const std::uint32_t* ring = ring_of(w, ring_, k);
-    update(w, x, ring, k, false);
-}
-
-// The same as adapt(), timing the winner search (steps 1-2) and the updates (steps 3-6).
-void NeuralMesh::adapt_profiled() {
-    early_valid_ = false;
-    const auto t0 = Clock::now();
-    const Vec3 x = next_sample();
-    const Vertex w(grid_.nearest(x));
-    activity_.prefetch(w.idx);
-    const auto t1 = Clock::now();
-    std::uint32_t k = 0;
-    const std::uint32_t* ring = ring_of(w, ring_, k);
-    update(w, x, ring, k, false);
-    stats_.seconds_winner += std::chrono::duration<double>(t1 - t0).count();
-    stats_.seconds_update += seconds_since(t1);
+// The next sample's winner, on the vertices as they are before this iteration moves them, and
+// the memory its iteration will touch first.
+void NeuralMesh::look_ahead() {
+    early_ = grid_.nearest(ahead_[0]);
+    early_d2_ = squared_distance(ahead_[0], mesh_.position(Vertex(early_)));
+    rings_.prefetch(Vertex(early_));
+    grid_.prefetch_move(early_);  // its slot, for its move at step 3
+    activity_.prefetch(early_);   // its record, for its signal at step 5
 }
 
 void NeuralMesh::iterate() {
     adapt();
     // Step 7: every Cvs iterations, split the most active vertex.
     if (iteration_ % params_.cvs == 0) {
-        if (profiling_) {
-            const auto t = Clock::now();
-            split_most_active();
-            stats_.seconds_split += seconds_since(t);
-        } else {
-            split_most_active();
-        }
+        PhaseTimer timer(profiling_ ? &stats_.seconds_split : nullptr);
+        split_most_active();
     }
     // Step 8: every Cec * n iterations, remove the inactive vertices. n changes as the mesh
     // grows, so the next pass is scheduled Cec * n iterations after this one, with the n of now.
     if (iteration_ >= next_removal_) {
-        const auto t = Clock::now();
-        remove_inactive();
-        if (profiling_) stats_.seconds_collapse += seconds_since(t);
+        {
+            // The collapses, the swaps among them timed apart (swap_around).
+            PhaseTimer timer(profiling_ ? &stats_.seconds_collapse : nullptr);
+            remove_inactive();
+        }
+        stats_.seconds_collapse -= stats_.seconds_swap - swap_seconds_before_;
+        swap_seconds_before_ = stats_.seconds_swap;
         next_removal_ = iteration_ + std::uint64_t(params_.cec) * mesh_.n_vertices();
     }
 }
@@ -346,15 +353,8 @@ void NeuralMesh::remove_inactive() {
         activity_.remove(vi);
         ++stats_.collapses;
         if (params_.edge_swap) {
-            if (profiling_) {
-                const auto t = Clock::now();
-                swap_around(u);
-                const double dt = seconds_since(t);
-                stats_.seconds_swap += dt;
-                stats_.seconds_collapse -= dt;  // reported apart from the collapses
-            } else {
-                swap_around(u);
-            }
+            PhaseTimer timer(profiling_ ? &stats_.seconds_swap : nullptr);
+            swap_around(u);
         }
     }
 }

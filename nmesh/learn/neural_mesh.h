@@ -97,8 +97,8 @@ private:
     float face_deviation(Halfedge h) const;
     float edge_deviation(Halfedge h) const;
     void set_position(Vertex v, const Vec3& p);
-    void adapt_profiled();
-    void adapt_ahead(const Vec3& x);
+    void adapt_to(const Vec3& x, bool sampled);
+    void look_ahead();
     std::uint32_t early_winner(const Vec3& x) const;
 
     PointSpan points_;
@@ -113,13 +113,11 @@ private:
     Vec3 ahead_[2];                     // the next two samples, normalised
     std::uint32_t ahead_index_ = 0;     // the index of the one after them, drawn in advance
     std::uint64_t ahead_cell_ = 0;      // ahead_[1]'s grid cell (VertexGrid::prefetch_query)
-    // From this many vertices on, adapt() looks one sample ahead (adapt_ahead). With the
-    // look-ahead from the start, learning took 3% less time at 100,000 vertices and 10% less at
-    // 300,000 (alternating runs), but 11% more instructions (counted up to 5,000 vertices) and no
-    // measurable gain at 30,000, where the mesh mostly fits in the cache. The results are the
-    // same bit for bit either way.
+    // From this many vertices on, where the mesh no longer fits in the cache, each iteration
+    // looks one sample ahead (look_ahead; docs/performance.md has the measurements). The results
+    // are the same bit for bit either way.
     std::uint32_t lookahead_from_ = 65536;
-    // The look-ahead winner search of large meshes (adapt_ahead): the next sample's nearest
+    // The look-ahead winner search of large meshes (look_ahead): the next sample's nearest
     // vertex found before this iteration moves anything, its squared distance then, and the
     // vertices this iteration moved (the winner and its ring).
     bool early_valid_ = false;
@@ -129,6 +127,7 @@ private:
     std::uint32_t moved_[RingCache::kCapacity + 1] = {};
     Statistics stats_;
     bool profiling_ = false;
+    double swap_seconds_before_ = 0.0;  // stats_.seconds_swap at the end of the last step 8
     std::uint64_t iteration_ = 0;
     std::uint64_t next_removal_ = 0;  // iteration of the next step 8
     std::uint64_t period_start_ = 0;  // activity mark at the start of the current step-8 period

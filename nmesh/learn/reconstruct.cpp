@@ -92,44 +92,57 @@ double estimated_seconds_left(const Progress& p) {
     return loop * (1.0 - fraction) / fraction;
 }
 
-Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& callbacks) {
-    params.validate();
-    using Clock = std::chrono::steady_clock;
-    const auto start = Clock::now();
-    auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+namespace {
 
-    const Normalization norm(require_reconstructible(cloud));
-    // On the heap, so that it can be destroyed, and its memory freed, as soon as the learning ends.
-    auto engine_ptr = std::make_unique<NeuralMesh>(cloud, norm.bounds, params, norm.transform);
-    NeuralMesh& engine = *engine_ptr;
-    engine.set_profiling(callbacks.profile);
+using Clock = std::chrono::steady_clock;
 
+// The progress callback, asked about every 2^16 iterations and once when the learning ends; it
+// remembers a cancellation.
+class Reporter {
+public:
+    Reporter(const Callbacks& callbacks, const NeuralMesh& engine, std::uint32_t target, Clock::time_point start)
+        : callbacks_(callbacks), engine_(engine), start_(start) {
+        progress_.target_vertices = target;
+        progress_.setup_seconds = elapsed();
+    }
+    double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+    // After each iteration: false once the caller has cancelled.
+    bool keep_going(bool settling) {
+        constexpr std::uint64_t kReportMask = (1u << 16) - 1;  // a callback every 65,536 iterations
+        if ((engine_.iteration() & kReportMask) == 0 && !report(settling)) cancelled_ = true;
+        return !cancelled_;
+    }
+    bool report(bool settling) {
+        if (!callbacks_.progress) return true;
+        progress_.vertices = engine_.mesh().n_vertices();
+        progress_.iterations = engine_.iteration();
+        progress_.seconds = elapsed();
+        progress_.settling = settling;
+        return callbacks_.progress(progress_);
+    }
+    bool cancelled() const { return cancelled_; }
+
+private:
+    const Callbacks& callbacks_;
+    const NeuralMesh& engine_;
+    Clock::time_point start_;
+    Progress progress_;
+    bool cancelled_ = false;
+};
+
+// Steps 1-9 until the target size (or a cancellation), with the snapshots on the way.
+// Choice: a run that cannot reach the target stops with an error instead of going on forever.
+// Vertices that win no signal in a step-8 period are removed, so a cloud of P points carries a
+// limited number of vertices (53,458 for the bunny's 35,947 points with Table 2's Cec and Cvs),
+// and any cloud carries few when Cec is small against Cvs. A growing mesh reaches a new largest
+// size in every step-8 period (Cec * n / Cvs splits per period against a few removals);
+// kStallPeriods periods in a row without one mean the mesh has stopped growing.
+void learn_to_target(NeuralMesh& engine, std::size_t cloud_size, const Parameters& params, const Callbacks& callbacks,
+                     const Normalization& norm, Reporter& reporter) {
+    constexpr std::uint64_t kStallPeriods = 8;
     std::vector<std::uint32_t> snapshots = callbacks.snapshot_vertices;
     std::sort(snapshots.begin(), snapshots.end());
     std::size_t next_snapshot = 0;
-
-    Result result;
-    Progress progress;
-    progress.target_vertices = params.target_vertices;
-    progress.setup_seconds = elapsed();
-    auto report = [&](bool settling) {
-        if (!callbacks.progress) return true;
-        progress.vertices = engine.mesh().n_vertices();
-        progress.iterations = engine.iteration();
-        progress.seconds = elapsed();
-        progress.settling = settling;
-        return callbacks.progress(progress);
-    };
-    constexpr std::uint64_t kReportMask = (1u << 16) - 1;  // a callback every 65,536 iterations
-
-    // Step 9: repeat until the target size is reached.
-    // Choice: a run that cannot reach the target stops with an error instead of going on forever.
-    // Vertices that win no signal in a step-8 period are removed, so a cloud of P points carries
-    // a limited number of vertices (53,458 for the bunny's 35,947 points with Table 2's Cec and
-    // Cvs), and any cloud carries few when Cec is small against Cvs. A growing mesh reaches a new
-    // largest size in every step-8 period (Cec * n / Cvs splits per period against a few
-    // removals); kStallPeriods periods in a row without one mean the mesh has stopped growing.
-    constexpr std::uint64_t kStallPeriods = 8;
     std::uint32_t largest = engine.mesh().n_vertices();
     std::uint64_t largest_pass = 0;  // removal pass count when `largest` was reached
     while (engine.mesh().n_vertices() < params.target_vertices) {
@@ -141,80 +154,91 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
             throw InputError("the mesh stopped growing at " + std::to_string(largest) + " vertices (" +
                              std::to_string(engine.stats().removal_passes - largest_pass) +
                              " removal periods without a larger mesh, " + std::to_string(engine.iteration()) +
-                             " iterations): " + std::to_string(cloud.size()) + " points cannot carry " +
-                             std::to_string(params.target_vertices) +
-                             " vertices with Cvs " + std::to_string(params.cvs) + " and Cec " +
-                             std::to_string(params.cec) + "; ask for at most about " + std::to_string(largest) +
-                             " vertices, or a larger Cec");
+                             " iterations): " + std::to_string(cloud_size) + " points cannot carry " +
+                             std::to_string(params.target_vertices) + " vertices with Cvs " +
+                             std::to_string(params.cvs) + " and Cec " + std::to_string(params.cec) +
+                             "; ask for at most about " + std::to_string(largest) + " vertices, or a larger Cec");
         }
         while (next_snapshot < snapshots.size() && engine.mesh().n_vertices() >= snapshots[next_snapshot]) {
             if (callbacks.on_snapshot) callbacks.on_snapshot(snapshots[next_snapshot], norm.to_input(engine.mesh().to_indexed()));
             ++next_snapshot;
         }
-        if ((engine.iteration() & kReportMask) == 0 && !report(false)) {
-            result.cancelled = true;
-            break;
-        }
+        if (!reporter.keep_going(false)) return;
     }
     // Choice: a target of 4 is the initial tetrahedron, reached before any iteration; it still
     // learns, with steps 1-6 for Cvs iterations per vertex (4 Cvs in all), so that it is fitted
     // to the cloud rather than returned as placed. A run to 8 or more vertices takes at least
     // that many iterations anyway (a split every Cvs iterations); smaller ones are topped up.
     const std::uint64_t minimum = 4 * std::uint64_t(params.cvs);
-    while (!result.cancelled && engine.iteration() < minimum) {
+    while (engine.iteration() < minimum) {
         engine.adapt();
-        if ((engine.iteration() & kReportMask) == 0 && !report(false)) result.cancelled = true;
+        if (!reporter.keep_going(false)) return;
     }
-    // Optional settling phase: steps 1-6 only.
-    if (!result.cancelled) {
-        const std::uint64_t settle = std::uint64_t(params.settle * engine.mesh().n_vertices());
-        for (std::uint64_t i = 0; i < settle; ++i) {
-            engine.adapt();
-            ++engine.stats().settle_iterations;
-            if ((engine.iteration() & kReportMask) == 0 && !report(true)) {
-                result.cancelled = true;
-                break;
-            }
-        }
+}
+
+// The optional settling phase: steps 1-6 only, settle * n iterations.
+void settle(NeuralMesh& engine, const Parameters& params, Reporter& reporter) {
+    const std::uint64_t iterations = std::uint64_t(params.settle * engine.mesh().n_vertices());
+    for (std::uint64_t i = 0; i < iterations; ++i) {
+        engine.adapt();
+        ++engine.stats().settle_iterations;
+        if (!reporter.keep_going(true)) return;
     }
-    const double learning_seconds = elapsed();
+}
+
+// The finishing stage (nmesh/finish/finish.h) on a copy of the learnt mesh, with the cloud the
+// engine's nearest-point index holds (all of it, or the sample of
+// Parameters::index_points_per_vertex, normalised), or a new index when the engine has none
+// (it builds one only for the edge swap). Returns false, leaving `mesh` alone, should the stage
+// ever fail to keep the vertex count.
+bool finish_stage(const Mesh& learnt, std::unique_ptr<PointGrid> cloud_index, PointSpan cloud,
+                  const Normalization& norm, const Parameters& params, Statistics& stats, Mesh& mesh) {
+    if (!cloud_index) {
+        cloud_index = index_cloud(cloud, norm.transform, norm.bounds, params);
+        record_index(*cloud_index, stats);
+    }
+    mesh = learnt;
+    FinishOptions options;
+    options.rounds = int(params.finish_rounds);
+    options.fit_rounds = int(params.fit_rounds);
+    finish_mesh(mesh, cloud_index->indexed_points(), options, cloud_index.get());
+    return mesh.n_vertices() == learnt.n_vertices();
+}
+
+}  // namespace
+
+Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& callbacks) {
+    params.validate();
+    const auto start = Clock::now();
+    const Normalization norm(require_reconstructible(cloud));
+    // On the heap, so that it can be destroyed, and its memory freed, as soon as the learning ends.
+    auto engine = std::make_unique<NeuralMesh>(cloud, norm.bounds, params, norm.transform);
+    engine->set_profiling(callbacks.profile);
+    Reporter reporter(callbacks, *engine, params.target_vertices, start);
+
+    learn_to_target(*engine, cloud.size(), params, callbacks, norm, reporter);
+    if (!reporter.cancelled()) settle(*engine, params, reporter);
+    const double learning_seconds = reporter.elapsed();
+
+    Result result;
+    result.cancelled = reporter.cancelled();
+    result.stats = engine->stats();
+    // The last progress report: the learning is over.
+    if (!result.cancelled) reporter.report(params.settle > 0.0);
     const bool finish = !result.cancelled && params.finish;
-    result.stats = engine.stats();
-    // The last progress report: the learning is over (the finishing stage that may follow makes
-    // none).
-    if (callbacks.progress && !result.cancelled) report(params.settle > 0.0);
-    // The learnt mesh leaves the engine, which is destroyed: what follows (the finishing stage,
-    // the output mesh) does not add to the memory of the grid, activity index and ring cache.
-    Mesh learnt = engine.take_mesh();
-    // The finishing stage works on the cloud the engine's nearest-point index holds (all of it or
-    // the sample of Parameters::index_points_per_vertex, normalised), with that index; without
-    // an edge swap the engine has none, and the same index is built now.
-    std::unique_ptr<PointGrid> cloud_index = finish ? engine.take_cloud_index() : nullptr;
-    engine_ptr.reset();
-    // The finishing stage (nmesh/finish.h), on a copy of the learnt mesh; should it ever fail to
-    // keep the vertex count, the learnt mesh is returned as it is.
-    bool finished = false;
-    if (finish) {
-        if (!cloud_index) {
-            cloud_index = index_cloud(cloud, norm.transform, norm.bounds, params);
-            record_index(*cloud_index, result.stats);
-        }
-        Mesh mesh = learnt;
-        FinishOptions options;
-        options.rounds = int(params.finish_rounds);
-        options.fit_rounds = int(params.fit_rounds);
-        finish_mesh(mesh, cloud_index->indexed_points(), options, cloud_index.get());
-        cloud_index.reset();
-        if (mesh.n_vertices() == learnt.n_vertices()) {
-            learnt = Mesh();
-            result.mesh = norm.to_input(mesh.to_indexed());
-            finished = true;
-        }
-    }
-    if (!finished) result.mesh = norm.to_input(learnt.to_indexed());
+    // The learnt mesh and the cloud's index leave the engine, which is destroyed: what follows
+    // does not add to the memory of the grid, activity index and ring cache.
+    Mesh learnt = engine->take_mesh();
+    std::unique_ptr<PointGrid> cloud_index = finish ? engine->take_cloud_index() : nullptr;
+    engine.reset();
+
+    Mesh finished;
+    result.stats.finished =
+        finish && finish_stage(learnt, std::move(cloud_index), cloud, norm, params, result.stats, finished);
+    if (result.stats.finished) learnt = Mesh();  // freed before the output mesh is built
+    result.mesh = norm.to_input(result.stats.finished ? finished.to_indexed() : learnt.to_indexed());
     result.stats.seconds = learning_seconds;
-    result.stats.seconds_finish = finish ? elapsed() - learning_seconds : 0.0;
-    result.stats.finished = finished;
+    result.stats.seconds_finish = finish ? reporter.elapsed() - learning_seconds : 0.0;
     return result;
 }
 

@@ -1,0 +1,112 @@
+"""reconstruct(): the same mesh as the command-line tool, any input layout, the result's shape."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import nmesh
+from nmesh import _nmesh
+
+# The keys of the --stats record that differ between two runs, or by design here.
+UNEQUAL_STATS = {"input", "seconds", "seconds_finish"}
+
+
+@pytest.mark.parametrize(
+    "vertices, seed, options, flags",
+    [
+        (1000, 3, {}, []),
+        (700, 5, {"edge_swap": False, "cvs": 60, "finish_rounds": 3, "settle": 0.5},
+         ["--no-edge-swap", "--cvs", "60", "--finish-rounds", "3", "--settle", "0.5"]),
+    ],
+)
+def test_same_mesh_and_stats_as_the_command_line_tool(tmp_path: Path, bunny_path: Path, bunny: np.ndarray, cli,
+                                                      vertices: int, seed: int, options: dict, flags: list) -> None:
+    cli_mesh, cli_stats = tmp_path / "cli.ply", tmp_path / "cli.json"
+    cli("reconstruct", bunny_path, "-o", cli_mesh, "--vertices", vertices, "--seed", seed, "--quiet",
+        "--stats", cli_stats, *flags)
+    result = nmesh.reconstruct(bunny, vertices, seed=seed, **options)
+    py_mesh = tmp_path / "py.ply"
+    nmesh.write_mesh(py_mesh, result.vertices, result.faces)
+    assert py_mesh.read_bytes() == cli_mesh.read_bytes()
+
+    expected = json.loads(cli_stats.read_text())
+    assert result.stats.keys() == expected.keys()
+    assert {k: v for k, v in result.stats.items() if k not in UNEQUAL_STATS} == \
+           {k: v for k, v in expected.items() if k not in UNEQUAL_STATS}
+    assert result.stats["input"] == "<array>"
+    assert result.stats["seconds"] > 0
+
+
+def test_the_result(bunny_mesh: nmesh.Reconstruction) -> None:
+    r = bunny_mesh
+    assert not r.cancelled
+    assert r.vertices.shape == (500, 3) and r.vertices.dtype == np.float32
+    assert r.faces.shape == (2 * 500 - 4, 3) and r.faces.dtype == np.int32  # closed, genus 0
+    assert r.faces.min() == 0 and r.faces.max() == 499
+    assert r.stats["vertices"] == 500 and r.stats["faces"] == len(r.faces)
+    assert r.stats["seed"] == 2 and r.stats["parameters"]["target_vertices"] == 500
+    assert r.stats["cancelled"] is False
+    m = r.stats["metrics"]
+    assert m["closed"] and m["manifold"] and m["genus"] == 0 and m["self_intersections"] == 0
+    assert 0 < m["hausdorff_rel"] < 0.1
+    assert "vertices=500" in repr(r)
+    # The arrays own the library's buffers (through their base), writable like any result.
+    assert r.vertices.flags["C_CONTIGUOUS"] and r.vertices.flags["WRITEABLE"]
+
+
+def test_other_layouts_give_the_same_mesh(bunny: np.ndarray) -> None:
+    reference = nmesh.reconstruct(bunny, 400, seed=7, metrics=False)
+    wide = np.zeros((len(bunny), 5), dtype=np.float32)
+    wide[:, 1:4] = bunny
+    layouts = {
+        "float64": bunny.astype(np.float64),
+        "fortran": np.asfortranarray(bunny),
+        "strided view": wide[:, 1:4],
+        "big-endian": bunny.astype(">f4"),
+        "list": bunny[:5000].tolist(),
+    }
+    for name, points in layouts.items():
+        if name == "list":
+            expected = nmesh.reconstruct(bunny[:5000], 400, seed=7, metrics=False)
+        else:
+            expected = reference
+        got = nmesh.reconstruct(points, 400, seed=7, metrics=False)
+        assert np.array_equal(got.vertices, expected.vertices), name
+        assert np.array_equal(got.faces, expected.faces), name
+
+
+def test_float32_points_are_not_copied(bunny: np.ndarray) -> None:
+    # The package hands a C-contiguous float32 array to the extension as it is...
+    assert nmesh._as_points(bunny) is bunny
+    assert nmesh._as_points(bunny.astype(np.float64)) is not bunny
+    # ...and the extension reads only such arrays, in place: it never converts one itself.
+    args = (400, 0.08, 0.01, 0.95, 100, 20, True, True, 1, 0.0, 10, 0, 64, None, False)
+    for other in (bunny.astype(np.float64), np.asfortranarray(bunny), bunny[::2], bunny[:, :2]):
+        with pytest.raises(TypeError, match="float32 array of shape"):
+            _nmesh.reconstruct(other, *args)
+    _nmesh.reconstruct(bunny, *args)
+
+
+def test_seed_and_parameters_reach_the_library(bunny: np.ndarray, bunny_mesh: nmesh.Reconstruction) -> None:
+    again = nmesh.reconstruct(bunny, 500, seed=2, metrics=False)
+    assert np.array_equal(again.vertices, bunny_mesh.vertices)
+    assert again.stats["metrics"] is None
+    other = nmesh.reconstruct(bunny, 500, seed=3, metrics=False)
+    assert not np.array_equal(other.vertices, bunny_mesh.vertices)
+    params = nmesh.reconstruct(bunny, 300, alpha_w=0.05, alpha_n=0.02, alpha=0.9, cvs=80, cec=15, finish=False,
+                               seed=2**64 - 1, index_points_per_vertex=0, metrics=False).stats
+    assert params["seed"] == 2**64 - 1
+    assert params["parameters"] == {"target_vertices": 300, "alpha_w": 0.05, "alpha_n": 0.02, "alpha": 0.9,
+                                    "cvs": 80, "cec": 15, "edge_swap": True, "settle": 0, "finish": False,
+                                    "finish_rounds": 10, "fit_rounds": 0, "index_points_per_vertex": 0}
+    assert params["seconds_finish"] == 0
+
+
+def test_topology_sphere_only(sphere: np.ndarray) -> None:
+    assert len(nmesh.reconstruct(sphere, 50, topology="sphere", metrics=False).vertices) == 50
+    with pytest.raises(ValueError, match="topology.*'torus'"):
+        nmesh.reconstruct(sphere, 50, topology="torus")
