@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "nmesh/cli/arguments.h"
 #include "nmesh/error.h"
 #include "nmesh/io.h"
 #include "nmesh/reconstruct.h"
@@ -28,19 +29,17 @@ int main(int argc, char** argv) {
         return 2;
     }
     nmesh::Parameters params;
-    params.target_vertices = 30000;
     int runs = 5;
     std::string csv;
-    for (int i = 2; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "--vertices" && i + 1 < argc) params.target_vertices = std::uint32_t(std::atol(argv[++i]));
-        else if (a == "--runs" && i + 1 < argc) runs = std::max(1, std::atoi(argv[++i]));
-        else if (a == "--no-edge-swap") params.edge_swap = false;
-        else if (a == "--csv" && i + 1 < argc) csv = argv[++i];
-        else {
-            std::fprintf(stderr, "unknown argument %s\n", a.c_str());
-            return 2;
-        }
+    try {
+        const nmesh::cli::Arguments args(argc, argv, 2, {"--no-edge-swap"}, {"--vertices", "--runs", "--csv"});
+        params.target_vertices = std::uint32_t(args.count("--vertices", 30000));
+        runs = int(std::max<std::uint64_t>(1, args.count("--runs", 5)));
+        params.edge_swap = !args.has("--no-edge-swap");
+        csv = args.text("--csv");
+    } catch (const nmesh::cli::UsageError& e) {
+        std::fprintf(stderr, "%s: %s\n", argv[0], e.what());
+        return 2;
     }
     try {
         const nmesh::PointCloud cloud = nmesh::read_points(argv[1]);

@@ -71,6 +71,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "nmesh/cli/arguments.h"
 #include "nmesh/error.h"
 #include "nmesh/spatial/cloud_sample.h"
 #include "nmesh/io.h"
@@ -537,16 +538,18 @@ int main(int argc, char** argv) {
     Options o;
     o.mode = argv[1];
     if (o.mode != "output" && o.mode != "input" && o.mode != "loading" && o.mode != "pair") return usage(argv[0]);
-    for (int i = 2; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a != "--profile" && i + 1 >= argc) return usage(argv[0]);
-        if (a == "--vertices") o.vertices = std::uint32_t(std::atol(argv[++i]));
-        else if (a == "--points") o.points = std::uint64_t(std::atoll(argv[++i]));
-        else if (a == "--runs") o.runs = std::max(1, std::atoi(argv[++i]));
-        else if (a == "--cloud") o.cloud = argv[++i];
-        else if (a == "--csv") o.csv = argv[++i];
-        else if (a == "--profile") o.profile = true;
-        else return usage(argv[0]);
+    try {
+        const nmesh::cli::Arguments args(argc, argv, 2, {"--profile"},
+                                         {"--vertices", "--points", "--runs", "--cloud", "--csv"});
+        o.vertices = std::uint32_t(args.count("--vertices", o.vertices));
+        o.points = args.count("--points", o.points);
+        o.runs = int(std::max<std::uint64_t>(1, args.count("--runs", std::uint64_t(o.runs))));
+        o.cloud = args.text("--cloud", o.cloud);
+        o.csv = args.text("--csv", o.csv);
+        o.profile = args.has("--profile");
+    } catch (const nmesh::cli::UsageError& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        return usage(argv[0]);
     }
     try {
         const nmesh::PointCloud base = nmesh::read_points(o.cloud);

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "nmesh/cli/arguments.h"
 #include "nmesh/error.h"
 #include "nmesh/io.h"
 #include "nmesh/metrics.h"
@@ -64,15 +65,14 @@ int main(int argc, char** argv) {
     std::uint32_t vertices = 5000;
     int seeds = 3;
     bool quick = false;
-    for (int i = 3; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "--vertices" && i + 1 < argc) vertices = std::uint32_t(std::atol(argv[++i]));
-        else if (a == "--seeds" && i + 1 < argc) seeds = std::max(1, std::atoi(argv[++i]));
-        else if (a == "--quick") quick = true;
-        else {
-            std::fprintf(stderr, "unknown argument %s\n", a.c_str());
-            return 2;
-        }
+    try {
+        const nmesh::cli::Arguments args(argc, argv, 3, {"--quick"}, {"--vertices", "--seeds"});
+        vertices = std::uint32_t(args.count("--vertices", vertices));
+        seeds = int(std::max<std::uint64_t>(1, args.count("--seeds", std::uint64_t(seeds))));
+        quick = args.has("--quick");
+    } catch (const nmesh::cli::UsageError& e) {
+        std::fprintf(stderr, "%s: %s\n", argv[0], e.what());
+        return 2;
     }
     try {
         const nmesh::PointCloud cloud = nmesh::read_points(cloud_path);

@@ -23,13 +23,18 @@ public:
     using Error::Error;
 };
 
+// The rule: ParameterError when an argument or parameter value is outside its documented range
+// (the caller can fix the call); InputError when the data, a cloud or a mesh, cannot be
+// processed, including a run that exceeds the library's capacity for it; IoError for files.
+
 // A parameter is out of range; the message names the parameter.
 class ParameterError : public Error {
 public:
     using Error::Error;
 };
 
-// The input data cannot be reconstructed (for example fewer than 4 distinct points).
+// The input data cannot be reconstructed or processed (for example fewer than 4 distinct points,
+// a non-finite coordinate, a mesh that refers to a vertex it does not have).
 class InputError : public Error {
 public:
     using Error::Error;

@@ -161,8 +161,9 @@ struct MeshWriteOptions {
 // Coordinates in text formats are the shortest decimal text that reads back as the same float,
 // so every format round-trips positions bit for bit through read_mesh.
 // PLY faces are "list uchar int vertex_indices"; OBJ indices are 1-based.
-// Preconditions, checked (ParameterError, nothing written): every coordinate finite; every
-// triangle index < positions.size() <= 2^31 - 1; colors empty or colors.size() == positions.size().
+// Preconditions, checked, nothing written: every coordinate finite, every triangle index <
+// positions.size() <= 2^31 - 1 (else InputError, the mesh being unwritable); colors empty or
+// colors.size() == positions.size() (else ParameterError).
 // O(vertices + triangles).
 void write_mesh(const std::string& path, const IndexedMesh& mesh, const MeshWriteOptions& options = {});
 

@@ -40,6 +40,8 @@ constexpr float squared_norm(const Vec3& v) { return dot(v, v); }
 inline float norm(const Vec3& v) { return std::sqrt(squared_norm(v)); }
 constexpr float squared_distance(const Vec3& a, const Vec3& b) { return squared_norm(a - b); }
 inline float distance(const Vec3& a, const Vec3& b) { return std::sqrt(squared_distance(a, b)); }
+// Whether every coordinate is finite (no NaN, no infinity).
+inline bool is_finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 // v / |v|, or the zero vector when |v| is 0 (no NaN escapes).
 inline Vec3 normalized(const Vec3& v) {
     const float n = norm(v);

@@ -522,8 +522,8 @@ TEST_CASE("ActivityIndex: stamps are 48 bits; past the last one, signal and add 
     index.collect_inactive(kMaxStamp, out);
     CHECK(out == std::vector<std::uint32_t>{0, 2, 0, 2, 1});
 
-    CHECK_THROWS_AS(index.signal(0), nmesh::ParameterError);
-    CHECK_THROWS_AS(index.add(3, 1.0), nmesh::ParameterError);
+    CHECK_THROWS_AS(index.signal(0), nmesh::InputError);
+    CHECK_THROWS_AS(index.add(3, 1.0), nmesh::InputError);
     CHECK_FALSE(index.contains(3));
     CHECK(index.size() == 3);
     CHECK(index.mark() == kMaxStamp);

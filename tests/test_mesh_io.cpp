@@ -397,7 +397,7 @@ TEST_CASE("check_mesh_output and check_output_location refuse what writing would
     CHECK(dir.names() == std::vector<std::string>{"file"});
 }
 
-TEST_CASE("write_mesh refuses meshes no reader could take back (ParameterError, nothing written)") {
+TEST_CASE("write_mesh refuses meshes no reader could take back (InputError for the mesh, ParameterError for the options; nothing written)") {
     TempDir dir;
     const std::string path = dir.at("m.ply");
     IndexedMesh mesh = random_mesh(4, 2, 2);
@@ -408,11 +408,11 @@ TEST_CASE("write_mesh refuses meshes no reader could take back (ParameterError, 
     IndexedMesh bad_index = mesh;
     bad_index.triangles[1] = {0, 4, 1};
     CHECK_THROWS_WITH_AS(nmesh::write_mesh(path, bad_index),
-                         doctest::Contains("mesh.triangles[1] uses vertex 4 of 4"), nmesh::ParameterError);
+                         doctest::Contains("mesh.triangles[1] uses vertex 4 of 4"), nmesh::InputError);
     IndexedMesh bad_point = mesh;
     bad_point.positions[2].y = std::numeric_limits<float>::infinity();
     CHECK_THROWS_WITH_AS(nmesh::write_mesh(path, bad_point),
-                         doctest::Contains("mesh.positions[2] is not finite"), nmesh::ParameterError);
+                         doctest::Contains("mesh.positions[2] is not finite"), nmesh::InputError);
     CHECK(dir.names().empty());
 }
 
@@ -473,7 +473,7 @@ TEST_CASE("write_file_atomically: on failure the target is untouched and no temp
     SUBCASE("write_mesh's preconditions fail") {
         IndexedMesh mesh = random_mesh(3, 1, 4);
         mesh.triangles[0][2] = 9;
-        CHECK_THROWS_AS(nmesh::write_mesh(target, mesh), nmesh::ParameterError);
+        CHECK_THROWS_AS(nmesh::write_mesh(target, mesh), nmesh::InputError);
     }
     CHECK(contents(target) == "old content");
     CHECK(dir.names() == std::vector<std::string>{"m.ply"});

@@ -461,6 +461,43 @@ TEST_CASE("triangle intersection: hand-made configurations, library and referenc
     }
 }
 
+TEST_CASE("triangle intersection: hand-made segments, library and reference agree") {
+    struct Case {
+        const char* name;
+        IPoint p, q;
+        bool expected;
+    };
+    const IPoint a{0, 0, 0}, b{4, 0, 0}, c{0, 4, 0};
+    const std::vector<Case> cases = {
+        {"piercing the inside", {1, 1, -1}, {1, 1, 1}, true},
+        {"piercing beyond the hypotenuse", {3, 3, -1}, {3, 3, 1}, false},
+        {"ending on the face", {1, 1, 0}, {1, 1, 5}, true},
+        {"ending on an edge", {2, 0, 0}, {2, -3, 5}, true},
+        {"ending just short of the face", {1, 1, 1}, {1, 1, 5}, false},
+        {"in the plane, crossing", {-1, 1, 0}, {5, 1, 0}, true},
+        {"in the plane, inside", {1, 1, 0}, {2, 1, 0}, true},
+        {"in the plane, grazing a corner", {-2, 2, 0}, {2, -2, 0}, true},
+        {"in the plane, missing a corner", {-2, 1, 0}, {1, -2, 0}, false},
+        {"in the plane, along an edge", {-2, 0, 0}, {6, 0, 0}, true},
+        {"in the plane, on an edge's line beyond it", {5, 0, 0}, {7, 0, 0}, false},
+        {"in the plane, touching a corner end to end", {4, 0, 0}, {6, 1, 0}, true},
+        {"in the plane, parallel to an edge, outside", {-1, -1, 0}, {5, -1, 0}, false},
+        {"a point inside", {1, 2, 0}, {1, 2, 0}, true},
+        {"a point on an edge", {2, 2, 0}, {2, 2, 0}, true},
+        {"a point outside in the plane", {3, 3, 0}, {3, 3, 0}, false},
+        {"a point off the plane", {1, 1, 1}, {1, 1, 1}, false},
+        {"through a corner, out of the plane", {-1, -1, -1}, {1, 1, 1}, true},
+        {"through an edge's middle, out of the plane", {2, -1, -1}, {2, 1, 1}, true},
+    };
+    for (const Case& k : cases) {
+        INFO(k.name);
+        CHECK(reference_segment_meets_triangle(k.p, k.q, a, b, c) == k.expected);
+        CHECK(segment_intersects_triangle(to_vec3(k.p), to_vec3(k.q), to_vec3(a), to_vec3(b), to_vec3(c)) == k.expected);
+        CHECK(segment_intersects_triangle(to_vec3(k.q), to_vec3(k.p), to_vec3(b), to_vec3(c), to_vec3(a)) == k.expected);
+        CHECK(segment_intersects_triangle(to_vec3(k.p), to_vec3(k.q), to_vec3(a), to_vec3(c), to_vec3(b)) == k.expected);
+    }
+}
+
 TEST_CASE("triangle intersection: degenerate faces are recognised and not judged") {
     const std::vector<Vec3> p = {{0, 0, 0}, {4, 0, 0}, {8, 0, 0}, {0, 4, 0}, {2, 0, 0}, {1, 1, -1}, {1, 1, 1},
                                  {0, 0, 0}};
@@ -618,7 +655,8 @@ TEST_CASE("triangle intersection: random segments against the exact reference") 
         const IPoint a = source(rng), b = source(rng), c = source(rng);
         if (reference_degenerate(a, b, c)) continue;
         const IPoint p = source(rng);
-        const IPoint q = i % 10 == 0 ? p : source(rng);  // some single points
+        IPoint q = i % 10 == 0 ? p : source(rng);  // some single points
+        if (i % 10 == 1) q = {2 * a.x - p.x, 2 * a.y - p.y, 2 * a.z - p.z};  // through the corner a
         ++cases;
         const bool reference = reference_segment_meets_triangle(p, q, a, b, c);
         if (reference) ++hits;

@@ -1,6 +1,7 @@
 // The finishing stage (nmesh/finish.h). Choice beyond the paper, which stops when the mesh has its
 // target size: the learnt mesh is regularised and its folds and self-intersections repaired;
 // Parameters::finish = false switches the stage off and gives the paper's plain algorithm.
+#include "nmesh/util/math_constants.h"
 #include "nmesh/finish/finish.h"
 
 #include <algorithm>
@@ -15,7 +16,6 @@
 namespace nmesh {
 namespace {
 
-constexpr float kPi = 3.14159265358979323846f;
 // The relaxation pulls a vertex towards the cloud by at most this share of its mean edge length
 // per round: where the surface is thinner than a triangle, a larger pull could cross to the
 // other side.
@@ -631,7 +631,7 @@ bool restore_vertex_count(Mesh& mesh, std::uint32_t target, const std::vector<Fa
 // ---- pass 1a: flips -------------------------------------------------------------------------------
 
 std::uint64_t flip_to_delaunay(Mesh& mesh, float max_dihedral_deg) {
-    const float cos_max = std::cos(max_dihedral_deg * kPi / 180.0f);
+    const float cos_max = std::cos(max_dihedral_deg * kPiF / 180.0f);
     std::vector<Edge> stack;
     std::vector<std::uint8_t> queued(mesh.edge_capacity(), 0);
     for (std::uint32_t e = mesh.edge_capacity(); e-- > 0;)
@@ -769,7 +769,7 @@ std::vector<std::pair<Face, Face>> find_self_intersections(const Mesh& mesh) {
 }
 
 std::vector<Edge> find_folded_edges(const Mesh& mesh, float dihedral_deg) {
-    const float cos_limit = std::cos(dihedral_deg * kPi / 180.0f);
+    const float cos_limit = std::cos(dihedral_deg * kPiF / 180.0f);
     std::vector<Edge> edges;
     for (std::uint32_t e = 0; e < mesh.edge_capacity(); ++e)
         if (!mesh.is_removed(Edge(e)) && edge_folded(mesh, Mesh::halfedge(Edge(e), 0), cos_limit)) edges.push_back(Edge(e));
@@ -806,7 +806,7 @@ Vertex split_edge(Mesh& mesh, Halfedge h) {
 RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fold_dihedral_deg,
                                             const CloudSurface* cloud) {
     RepairResult result;
-    DefectTracker tracker(mesh, std::cos(fold_dihedral_deg * kPi / 180.0f));
+    DefectTracker tracker(mesh, std::cos(fold_dihedral_deg * kPiF / 180.0f));
     result.intersecting_pairs_before = tracker.pairs().size();
     result.folded_edges_before = tracker.folds().size();
     result.intersecting_pairs = result.intersecting_pairs_before;

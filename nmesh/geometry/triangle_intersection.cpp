@@ -78,6 +78,53 @@ bool coplanar_segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a
            segments_meet_2d(p2, q2, c2, a2);
 }
 
+// Two triangles P and Q lying in one plane, projected on a coordinate plane on which P (hence Q)
+// is non-degenerate, with the sides of each one's corners relative to the other's edge lines:
+// p_side[m][k] = orient2d(Q[k], Q[k+1], P[m]) and q_side[m][k] = orient2d(P[k], P[k+1], Q[m]).
+// The edge tests read these 18 signs only.
+class CoplanarTriangles {
+public:
+    CoplanarTriangles(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& q0, const Vec3& q1,
+                      const Vec3& q2, int axis)
+        : p_{project(p0, axis), project(p1, axis), project(p2, axis)},
+          q_{project(q0, axis), project(q1, axis), project(q2, axis)} {
+        for (int m = 0; m < 3; ++m)
+            for (int k = 0; k < 3; ++k) {
+                p_side_[m][k] = orient2d(q_[k], q_[(k + 1) % 3], p_[m]);
+                q_side_[m][k] = orient2d(p_[k], p_[(k + 1) % 3], q_[m]);
+            }
+    }
+
+    // Whether the edge from corner i to corner i + 1 of P meets the closed Q, and the converse.
+    bool p_edge_meets_q(int i) const { return edge_meets(p_, q_, p_side_, q_side_, i); }
+    bool q_edge_meets_p(int i) const { return edge_meets(q_, p_, q_side_, p_side_, i); }
+
+private:
+    // Edge i of triangle e against triangle t, given e_side[m][k], the side of e's corner m
+    // relative to t's edge k, and t_side[m][k], the side of t's corner m relative to e's edge k:
+    // an end inside t, or a crossing or touching of one of t's edges.
+    static bool edge_meets(const Point2d (&e)[3], const Point2d (&t)[3], const int (&e_side)[3][3],
+                           const int (&t_side)[3][3], int i) {
+        const int j = (i + 1) % 3;
+        if (!mixed_signs(e_side[i][0], e_side[i][1], e_side[i][2]) ||
+            !mixed_signs(e_side[j][0], e_side[j][1], e_side[j][2]))
+            return true;
+        for (int k = 0; k < 3; ++k) {
+            const int l = (k + 1) % 3;
+            const int d1 = e_side[i][k], d2 = e_side[j][k];  // the edge's ends against t's edge line k
+            const int d3 = t_side[k][i], d4 = t_side[l][i];  // t's edge k's ends against the edge's line
+            if (d1 * d2 < 0 && d3 * d4 < 0) return true;
+            if ((d1 == 0 && on_segment_2d(t[k], t[l], e[i])) || (d2 == 0 && on_segment_2d(t[k], t[l], e[j])) ||
+                (d3 == 0 && on_segment_2d(e[i], e[j], t[k])) || (d4 == 0 && on_segment_2d(e[i], e[j], t[l])))
+                return true;
+        }
+        return false;
+    }
+
+    Point2d p_[3], q_[3];
+    int p_side_[3][3], q_side_[3][3];
+};
+
 // ---- segment and triangle ----------------------------------------------------------------------
 
 // Whether the closed segment pq meets the closed triangle abc, given sp = orient3d(a, b, c, p) and
@@ -143,10 +190,16 @@ bool nondegenerate_faces_intersect(const Vec3* positions, const Face& t, const F
             // triangles. Conversely no point of ab or cd is v.
             const int i = t_shared[0] ? 0 : (t_shared[1] ? 1 : 2);
             const int j = u_shared[0] ? 0 : (u_shared[1] ? 1 : 2);
-            const Vec3 &a = at(t[(i + 1) % 3]), &b = at(t[(i + 2) % 3]);
+            const Vec3 &v = at(t[i]), &a = at(t[(i + 1) % 3]), &b = at(t[(i + 2) % 3]);
             const Vec3 &c = at(u[(j + 1) % 3]), &d = at(u[(j + 2) % 3]);
-            return segment_intersects_triangle(a, b, at(u[0]), at(u[1]), at(u[2])) ||
-                   segment_intersects_triangle(c, d, at(t[0]), at(t[1]), at(t[2]));
+            const int sa = orient3d(v, c, d, a), sb = orient3d(v, c, d, b);
+            if (sa == 0 && sb == 0) {  // t lies in the plane of u
+                const CoplanarTriangles pair(v, a, b, v, c, d, projection_axis(v, a, b));
+                return pair.p_edge_meets_q(1) || pair.q_edge_meets_p(1);
+            }
+            // Not coplanar: c and d are not both in the plane of t either.
+            return segment_meets_triangle(a, b, sa, sb, v, c, d) ||
+                   segment_meets_triangle(c, d, orient3d(v, a, b, c), orient3d(v, a, b, d), v, a, b);
         }
         case 2: {
             const int i = !t_shared[0] ? 0 : (!t_shared[1] ? 1 : 2);
@@ -316,12 +369,21 @@ bool triangles_intersect_exact(const Vec3& a, const Vec3& b, const Vec3& c, cons
                                const Vec3& e, const Vec3& f) {
     const int sd = orient3d(a, b, c, d), se = orient3d(a, b, c, e), sf = orient3d(a, b, c, f);
     if (sd == se && se == sf && sd != 0) return false;  // def strictly on one side of abc's plane
+    // In one plane, either the boundaries meet or one triangle contains the other (then its
+    // edges lie in the other): some edge of one meets the other.
+    if (sd == 0 && se == 0 && sf == 0) {
+        const int axis = projection_axis(a, b, c);
+        if (axis < 0) return false;
+        const CoplanarTriangles pair(a, b, c, d, e, f, axis);
+        for (int i = 0; i < 3; ++i)
+            if (pair.p_edge_meets_q(i) || pair.q_edge_meets_p(i)) return true;
+        return false;
+    }
     const int sa = orient3d(d, e, f, a), sb = orient3d(d, e, f, b), sc = orient3d(d, e, f, c);
     if (sa == sb && sb == sc && sa != 0) return false;
     // Out of one plane, the common part lies on the line of the two planes, where each triangle
     // is a segment with its ends on its edges; the overlap of the two segments, if any, has an end
-    // that is an end of one of them, so an edge of one triangle meets the other. In one plane,
-    // either the boundaries meet or one triangle contains the other: again an edge meets.
+    // that is an end of one of them, so an edge of one triangle meets the other.
     return edges_meet_triangle(d, e, f, sd, se, sf, a, b, c) || edges_meet_triangle(a, b, c, sa, sb, sc, d, e, f);
 }
 

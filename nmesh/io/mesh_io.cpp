@@ -290,20 +290,19 @@ void check_writable(const std::string& path, const IndexedMesh& mesh, const Mesh
     const std::string where = "write_mesh(" + path + "): ";
     const std::size_t n = mesh.positions.size();
     if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
-        throw ParameterError(where + "mesh has " + std::to_string(n) +
+        throw InputError(where + "mesh has " + std::to_string(n) +
                              " vertices, more than PLY's int indices can address");
     if (!options.colors.empty() && options.colors.size() != n)
         throw ParameterError(where + "options.colors has " + std::to_string(options.colors.size()) +
                              " entries for " + std::to_string(n) + " vertices");
     for (std::size_t i = 0; i < n; ++i) {
         const Vec3& p = mesh.positions[i];
-        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-            throw ParameterError(where + "mesh.positions[" + std::to_string(i) + "] is not finite");
+        if (!is_finite(p)) throw InputError(where + "mesh.positions[" + std::to_string(i) + "] is not finite");
     }
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
         for (std::uint32_t v : mesh.triangles[t])
             if (v >= n)
-                throw ParameterError(where + "mesh.triangles[" + std::to_string(t) + "] uses vertex " +
+                throw InputError(where + "mesh.triangles[" + std::to_string(t) + "] uses vertex " +
                                      std::to_string(v) + " of " + std::to_string(n));
 }
 

@@ -59,7 +59,6 @@ FileGeometry read_geometry(const std::string& path, ReadFaces faces) {
 }
 
 namespace {
-bool is_finite(const Vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 }  // namespace
 
 PointCloud read_points(const std::string& path, PointReadReport* report) {

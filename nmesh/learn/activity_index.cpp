@@ -40,7 +40,7 @@ double ActivityIndex::checked_counter(double tau, const char* what) {
 }
 
 void ActivityIndex::stamps_exhausted() {
-    throw ParameterError("ActivityIndex: more than 2^48 - 1 signals and additions (the stamps are exhausted)");
+    throw InputError("ActivityIndex: more than 2^48 - 1 signals and additions (the stamps are exhausted)");
 }
 
 // --- vertices ------------------------------------------------------------------------------

@@ -40,7 +40,7 @@
 //     at most largest id / 2^15 records per decay (31 for 10^6 vertices), so O(1) amortised per
 //     decay for any mesh that fits in memory. Stamps have 48 bits: an index gives at most
 //     2^48 - 1 (2.8e14) of them, about nine years at a million signals a second; beyond,
-//     signal() and add() throw ParameterError and change nothing.
+//     signal() and add() throw InputError (a run too long for the index) and change nothing.
 //
 // Accuracy: a counter read back after k decays since it was last written carries a relative
 // rounding error of about k * 2^-52 (as does the plain loop `tau *= alpha`); counters below

@@ -63,8 +63,7 @@ BoundingBox require_reconstructible(PointSpan pts) {
         nan = nan || d != d;
         if (d > best) best = d, b = p;
     }
-    const auto finite = [](const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
-    if (nan || !finite(box.min) || !finite(box.max)) throw InputError("the point cloud holds a non-finite coordinate");
+    if (nan || !is_finite(box.min) || !is_finite(box.max)) throw InputError("the point cloud holds a non-finite coordinate");
     if (best == 0.0f) throw InputError("all points of the cloud are identical");
     // A point off the line through a and b, the point farthest from a.
     const Vec3 dir = b - a;

@@ -18,6 +18,7 @@
 
 #include "nmesh/bounding_box.h"
 #include "nmesh/error.h"
+#include "nmesh/util/math_constants.h"
 #include "nmesh/spatial/point_grid.h"
 
 namespace nmesh {
@@ -27,7 +28,6 @@ namespace {
 using Eigen::Vector3d;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kPi = 3.14159265358979323846;
 // Triangles whose smallest angle is below this are counted as poorly shaped (a common threshold
 // in meshing; 60 degrees is the equilateral optimum).
 constexpr double kSmallAngleDeg = 10.0;
@@ -37,7 +37,6 @@ constexpr std::uint32_t kLeafSize = 4;
 
 Vector3d to_eigen(const Vec3& v) { return {double(v.x), double(v.y), double(v.z)}; }
 
-bool is_finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // ---- geometric predicates -----------------------------------------------------------------------
 

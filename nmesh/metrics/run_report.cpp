@@ -65,6 +65,7 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << "  \"cancelled\": " << (r.cancelled ? "true" : "false") << ",\n"
       << "  \"metrics\": " << metrics.str() << "\n"
       << "}\n";
+    o.precision(old_precision);
 }
 
 }  // namespace nmesh

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "nmesh/error.h"
+#include "nmesh/util/math_constants.h"
 
 namespace nmesh {
 namespace {
@@ -32,9 +33,7 @@ constexpr double kLightRight = -1.0, kLightUp = 1.0, kLightToward = 2.0;
 // linearly to no change one output pixel away on each side — a line about one pixel wide that
 // keeps the shading (and the ramp colour) visible on meshes whose edges crowd together.
 constexpr double kEdgeShade = 0.2;
-constexpr double kPi = 3.14159265358979323846;
 
-bool is_finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 void check_options(const IndexedMesh& mesh, const RenderOptions& o) {
     if (o.width < 1 || o.width > kMaxSide || o.height < 1 || o.height > kMaxSide)

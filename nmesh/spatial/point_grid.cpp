@@ -376,7 +376,7 @@ bool PointGrid::settled(const Scan& s) const {
 }
 
 NearestPoint PointGrid::find_nearest(const Vec3& q) const {
-    assert(std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z));
+    assert(is_finite(q));
     Scan s;
     s.q = q;
     s.scale = cell_size_ * cell_size_ * (1.0 - kRelativeSlack);

@@ -197,7 +197,7 @@ void VertexGrid::reinsert(std::size_t n) {
 
 void VertexGrid::insert(std::uint32_t id, const Vec3& p) {
     assert(id != kNone && !contains(id));
-    assert(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+    assert(is_finite(p));
     if (id >= slots_.size()) slots_.resize(std::max<std::size_t>(std::size_t(id) + 1, 2 * slots_.size()));
     add_to_cell(id, p, cell_key(p));
     ++size_;
@@ -213,7 +213,7 @@ void VertexGrid::remove(std::uint32_t id) {
 
 void VertexGrid::move_to_cell(std::uint32_t id, const Vec3& p, std::uint64_t key) {
     assert(contains(id));
-    assert(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+    assert(is_finite(p));
     remove_from_cell(id);
     add_to_cell(id, p, key);
     // After n/2 cell changes, resize the cells if the vertices have spread or gathered so much

@@ -37,7 +37,10 @@ except ImportError as error:  # the source tree's python/nmesh, or a build witho
 from ._nmesh import InputError
 
 __all__ = [
+    "Float32Array",
     "InputError",
+    "Int32Array",
+    "PathArg",
     "ProgressCallback",
     "Reconstruction",
     "evaluate",
@@ -51,6 +54,10 @@ __version__: str = _nmesh.__version__
 
 #: The type of a path argument: str, bytes or os.PathLike.
 PathArg = Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
+
+#: (N, 3) float32 points or vertices, and (F, 3) int32 faces, as the functions return them.
+Float32Array = npt.NDArray[np.float32]
+Int32Array = npt.NDArray[np.int32]
 
 #: progress(vertices, target_vertices, seconds) -> continue? (None or True continue, False cancels)
 ProgressCallback = Callable[[int, int, float], Optional[bool]]
@@ -73,8 +80,8 @@ class Reconstruction:
     cancelled: True when the progress callback returned False: the mesh is the one reached so far.
     """
 
-    vertices: np.ndarray
-    faces: np.ndarray
+    vertices: Float32Array
+    faces: Int32Array
     stats: Dict[str, Any]
     cancelled: bool
 
@@ -92,7 +99,7 @@ def _path(path: PathArg) -> bytes:
     return os.fsencode(path)
 
 
-def _rows_of_three(array: npt.ArrayLike, name: str) -> np.ndarray:
+def _rows_of_three(array: npt.ArrayLike, name: str) -> npt.NDArray[Any]:
     """`array` as an ndarray of real numbers of shape (N, 3), not yet converted; the checks."""
     a = np.asarray(array)  # no copy for an ndarray (a subclass gives a view of the same memory)
     if a.dtype.kind == "c":
@@ -104,7 +111,7 @@ def _rows_of_three(array: npt.ArrayLike, name: str) -> np.ndarray:
     return a
 
 
-def _as_points(points: npt.ArrayLike, name: str = "points") -> np.ndarray:
+def _as_points(points: npt.ArrayLike, name: str = "points") -> Float32Array:
     """`points` as a C-contiguous, aligned float32 (N, 3) array: the same object when it already
     is one (reconstruct then reads the caller's buffer in place), else one converted copy.
     Values beyond float32's range become infinite (as the file readers do), which the library
@@ -114,7 +121,7 @@ def _as_points(points: npt.ArrayLike, name: str = "points") -> np.ndarray:
         return np.require(a, dtype=np.float32, requirements=("C", "A"))
 
 
-def _as_faces(faces: npt.ArrayLike, vertex_count: int) -> np.ndarray:
+def _as_faces(faces: npt.ArrayLike, vertex_count: int) -> npt.NDArray[np.uint32]:
     """`faces` as a C-contiguous uint32 (F, 3) array, every index checked to be in [0, V): so
     that no int64 index wraps around to a valid one on the way to uint32."""
     f = np.asarray(faces)
@@ -254,14 +261,14 @@ def reconstruct(
     return Reconstruction(vertices_out, faces_out, stats, cancelled)
 
 
-def read_points(path: PathArg) -> np.ndarray:
+def read_points(path: PathArg) -> Float32Array:
     """The points of a file (.ply, .xyz/.txt/.pts/.csv, .obj, .off) as an (N, 3) float32 array,
     in file order; points with a NaN or infinite coordinate are dropped. Raises OSError (the
     message starts with the path) for a file that is missing, unreadable or malformed."""
     return _nmesh.read_points(_path(path))
 
 
-def read_mesh(path: PathArg) -> Tuple[np.ndarray, np.ndarray]:
+def read_mesh(path: PathArg) -> Tuple[Float32Array, Int32Array]:
     """(vertices (V, 3) float32, faces (F, 3) int32) of a .ply, .obj or .off file (polygons are
     fan-triangulated; a point file gives no faces). Raises OSError as read_points does."""
     return _nmesh.read_mesh(_path(path))

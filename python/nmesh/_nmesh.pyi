@@ -4,6 +4,11 @@
 from typing import Callable, Optional, Tuple
 
 import numpy as np
+import numpy.typing as npt
+
+_Float32Array = npt.NDArray[np.float32]
+_Int32Array = npt.NDArray[np.int32]
+_UInt32Array = npt.NDArray[np.uint32]
 
 __version__: str
 
@@ -11,7 +16,7 @@ class InputError(ValueError):
     """The points cannot be reconstructed or measured."""
 
 def reconstruct(
-    points: np.ndarray,
+    points: _Float32Array,
     target_vertices: int,
     alpha_w: float,
     alpha_n: float,
@@ -27,8 +32,8 @@ def reconstruct(
     index_points_per_vertex: int,
     progress: Optional[Callable[[int, int, float], Optional[bool]]],
     metrics: bool,
-) -> Tuple[np.ndarray, np.ndarray, str, bool]: ...
-def read_points(path: bytes | str) -> np.ndarray: ...
-def read_mesh(path: bytes | str) -> Tuple[np.ndarray, np.ndarray]: ...
-def write_mesh(path: bytes | str, vertices: np.ndarray, faces: np.ndarray, ascii: bool) -> None: ...
-def evaluate(points: np.ndarray, vertices: np.ndarray, faces: np.ndarray) -> str: ...
+) -> Tuple[_Float32Array, _Int32Array, str, bool]: ...
+def read_points(path: bytes | str) -> _Float32Array: ...
+def read_mesh(path: bytes | str) -> Tuple[_Float32Array, _Int32Array]: ...
+def write_mesh(path: bytes | str, vertices: _Float32Array, faces: _UInt32Array, ascii: bool) -> None: ...
+def evaluate(points: _Float32Array, vertices: _Float32Array, faces: _UInt32Array) -> str: ...

@@ -134,5 +134,4 @@ def test_the_gil_is_released_while_learning(bunny: np.ndarray) -> None:
     finally:
         stop.set()
         thread.join()
-    print(f"GIL ratio {during / alone:.2f}")
     assert during > 0.2 * alone, f"counted {during:.0f}/s while learning, {alone:.0f}/s alone"

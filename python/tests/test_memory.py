@@ -87,7 +87,6 @@ def test_process_memory_bounded_over_200_calls(one_call) -> None:
         one_call()
     gc.collect()
     growth = rss_bytes() - before
-    print(f"RSS growth {growth}")
     assert growth < 1_000_000, f"the process grew by {growth} bytes over 200 calls"
 
 
@@ -103,5 +102,4 @@ def test_no_python_allocation_left_over_50_calls(one_call) -> None:
     finally:
         tracemalloc.stop()
     # NumPy's own buffers (the float64 points' float32 copy) are traced; so are Python objects.
-    print(f"traced {traced}")
     assert traced < 100_000, f"{traced} bytes of Python allocations still held after 50 calls"
