@@ -1,4 +1,4 @@
-// nmesh/finish.h — the finishing stage: a few passes over the learnt mesh once it has reached its
+// nmesh/finish/finish.h — the finishing stage: a few passes over the learnt mesh once it has reached its
 // target size, for the shape of its triangles and a clean embedding (no folds, no
 // self-intersections). A choice beyond the paper, on by default (Parameters::finish).
 //
@@ -27,7 +27,7 @@
 // size of the cloud: a cloud larger than the mesh is read in full only by is_flat() and by the
 // nearest-point index (see CloudSurface and estimate_hausdorff for how the rest follows the
 // mesh), and reconstruct() gives it no more than 64 points per vertex (the stratified sample of
-// nmesh/cloud_sample.h, with the engine's index over it). About 0.30 s for the 30,000-vertex
+// nmesh/spatial/cloud_sample.h, with the engine's index over it). About 0.30 s for the 30,000-vertex
 // bunny, against 1.3 s of learning; 0.55 s for 30,000 vertices from 36 million points on a
 // sphere through reconstruct() (26 s when every point had its own normal and its own term in
 // the repair's estimate, 2.1 s when the stage still worked on every point).
@@ -39,6 +39,10 @@
 #include <utility>
 #include <vector>
 
+#include "nmesh/finish/cloud_surface.h"
+#include "nmesh/finish/hausdorff_estimate.h"
+#include "nmesh/finish/regularise.h"
+#include "nmesh/finish/repair.h"
 #include "nmesh/mesh/mesh.h"
 #include "nmesh/spatial/point_grid.h"
 
@@ -99,104 +103,5 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
 
 // Whether all the points lie in one plane (up to 1e-6 of their extent).
 bool is_flat(const std::vector<Vec3>& cloud);
-
-// ---- the passes, also usable alone ----------------------------------------------------------------
-
-// Flips every edge whose two opposite angles sum to more than 180 degrees (it is not locally
-// Delaunay) when its two triangles are nearly coplanar before and after the flip (normals within
-// max_dihedral_deg of each other, the new triangles facing the old ones' side) and Mesh::can_flip
-// allows it, until no such edge is left (at most 8 flips per edge). Only the connectivity
-// changes. Returns the number of flips.
-std::uint64_t flip_to_delaunay(Mesh& mesh, float max_dihedral_deg = 20.0f);
-
-// The cloud as the surface the relaxation pulls vertices towards. Each point has a normal, that
-// of its nearest vertex in `mesh` (the learnt mesh), which tells the two sides of a part thinner
-// than a triangle apart.
-// Choice: for a cloud of more than kStoredNormalsPerVertex points per mesh vertex, a point's normal
-// is looked up when a pull needs it (its nearest vertex found in an index over the learnt mesh's
-// vertices, whose normals are computed once) instead of being stored for every point, so that
-// the stage's cost and memory follow the mesh, not the cloud: 36 million points and 30,000
-// vertices would otherwise take 36 million nearest-vertex queries and 430 MB of normals, for the
-// few hundred thousand pulls of the stage. A smaller cloud keeps them all, computed at once, which
-// costs less than a query per pull. Either way a point's normal is the same.
-class CloudSurface {
-public:
-    static constexpr std::size_t kStoredNormalsPerVertex = 8;
-
-    // `points` (and `index`, a nearest-point index over exactly those points, or null to build
-    // one) must outlive the object. O(m) for a mesh of m vertices, O(n) more for n points when
-    // their normals are stored; plus building `index` when none is given.
-    CloudSurface(const std::vector<Vec3>& points, const Mesh& mesh, const PointGrid* index = nullptr);
-    // q moved along the unit normal n towards the plane through its nearest cloud point (normal
-    // n), by at most `limit`; q itself when that point faces the other way (its normal against n)
-    // or lies farther than `reach` from q (q is over a hole in the scan).
-    Vec3 pull(const Vec3& q, const Vec3& n, float limit, float reach) const;
-    // The same with the nearest cloud point to q already known.
-    Vec3 pull(const Vec3& q, const Vec3& n, float limit, float reach, const NearestPoint& near) const;
-    const std::vector<Vec3>& points() const { return points_; }
-    const PointGrid& index() const { return *index_; }
-    // The normal of cloud point i: that of its nearest vertex in the learnt mesh.
-    const Vec3& normal(std::uint32_t i) const {
-        return point_normals_.empty() ? vertex_normals_[vertex_index_->nearest(points_[i])] : point_normals_[i];
-    }
-    // Whether every point's normal was computed at construction (a cloud of at most
-    // kStoredNormalsPerVertex points per mesh vertex).
-    bool stores_point_normals() const { return !point_normals_.empty(); }
-
-private:
-    const std::vector<Vec3>& points_;
-    std::unique_ptr<PointGrid> own_index_;  // when none was given
-    const PointGrid* index_;
-    std::unique_ptr<PointGrid> vertex_index_;  // over the learnt mesh's vertices
-    std::vector<Vec3> vertex_normals_;         // their normals, in the index's order
-    std::vector<Vec3> point_normals_;          // per cloud point, or empty (see the choice above)
-};
-
-// One round of tangential relaxation (all vertices moved from their old positions): every vertex
-// moves to the area-weighted centroid of its triangles' centroids, minus the normal component of
-// that move; with `cloud`, it is then pulled towards the cloud by at most a quarter of its mean
-// edge length (CloudSurface::pull, reach: its mean edge length), and a vertex whose move would end
-// farther from the cloud than the mesh's mean edge length, and farther than it was, stays.
-void relax_tangentially(Mesh& mesh, const CloudSurface* cloud = nullptr);
-
-// The Hausdorff distance between `mesh` and the cloud of `surface` as the repair estimates it, to
-// refuse a repair that would move the surface away from the cloud: the larger of (a) the distance
-// from each measured cloud point to the triangles around its nearest vertex and (b) the surface's
-// largest distance to the cloud, measured to within an eighth of the mean edge length. Every cloud point is
-// measured up to 16 points per mesh vertex; beyond, every s-th point, s the smallest stride that
-// leaves at most 16 per vertex, so that the cost follows the mesh. O(m) for m vertices.
-float estimate_hausdorff(const Mesh& mesh, const CloudSurface& surface);
-
-// One damped Lloyd step of the centroids towards the cloud (see FinishOptions::fit_rounds).
-void fit_centroids(Mesh& mesh, const std::vector<Vec3>& cloud, float weight);
-
-// Every pair of triangles that share no vertex and intersect (touching counts), as
-// nmesh::triangles_intersect decides, each pair once, smaller face first, sorted; degenerate
-// triangles are skipped, as the metrics do. Expected O(F) through a hash grid of the triangles'
-// bounding boxes.
-std::vector<std::pair<Face, Face>> find_self_intersections(const Mesh& mesh);
-
-// Edges whose two triangles' normals differ by more than `dihedral_deg`, and edges of degenerate
-// (zero-area) triangles.
-std::vector<Edge> find_folded_edges(const Mesh& mesh, float dihedral_deg = 120.0f);
-
-// Splits the edge of h at its midpoint (Mesh::split): the new vertex has valence 4 and the four
-// new triangles cover exactly the two old ones. Returns the new vertex.
-Vertex split_edge(Mesh& mesh, Halfedge h);
-
-struct RepairResult {
-    std::size_t intersecting_pairs_before = 0;
-    std::size_t folded_edges_before = 0;
-    std::size_t intersecting_pairs = 0;  // left (as before when reverted)
-    std::size_t folded_edges = 0;
-    std::uint32_t rounds = 0;
-    bool reverted = false;  // the mesh was put back as it came
-};
-
-// Step 2 of the stage (see finish.cpp for the details). With `cloud`, the smoothed vertices are
-// pulled back towards it, and the repair is undone if it raises the (estimated) Hausdorff distance
-// to the cloud by more than half the mean edge length. Keeps the vertex count; all or nothing.
-RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds = 40, float fold_dihedral_deg = 120.0f,
-                                            const CloudSurface* cloud = nullptr);
 
 }  // namespace nmesh

@@ -14,6 +14,15 @@ import pytest
 import nmesh
 
 
+@pytest.fixture()
+def python_sigint_handler():
+    """Python's own SIGINT handler (KeyboardInterrupt), which Python does not install when it
+    starts with SIGINT ignored, as a background job of a non-interactive shell does."""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)
+
+
 def test_progress_arguments(bunny: np.ndarray) -> None:
     calls: List[Tuple[int, int, float]] = []
     threads = set()
@@ -76,7 +85,7 @@ def test_an_answer_without_a_truth_value_propagates(sphere: np.ndarray) -> None:
         nmesh.reconstruct(sphere, 1000, progress=lambda *_: np.array([1, 2]))
 
 
-def test_sigint_in_the_callback_raises_keyboardinterrupt(bunny: np.ndarray) -> None:
+def test_sigint_in_the_callback_raises_keyboardinterrupt(bunny: np.ndarray, python_sigint_handler) -> None:
     calls = []
 
     def progress(vertices, target, seconds):
@@ -89,7 +98,7 @@ def test_sigint_in_the_callback_raises_keyboardinterrupt(bunny: np.ndarray) -> N
     assert len(calls) == 2
 
 
-def test_ctrl_c_while_learning_raises_keyboardinterrupt(bunny: np.ndarray) -> None:
+def test_ctrl_c_while_learning_raises_keyboardinterrupt(bunny: np.ndarray, python_sigint_handler) -> None:
     # No Python callback at all: the SIGINT arrives from another thread while the main thread is
     # inside the library, without the GIL; the library's progress report lets Python run its
     # handler. A 30,000-vertex bunny learns for seconds; the interrupt must end it at once.

@@ -1,0 +1,109 @@
+// nmesh/finish/regularise.cpp — flips, tangential relaxation and the centroid fit (step 1 of the stage).
+#include "nmesh/finish/regularise.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "nmesh/finish/mesh_queries.h"
+#include "nmesh/util/math_constants.h"
+
+namespace nmesh {
+
+using namespace finish_detail;
+
+std::uint64_t flip_to_delaunay(Mesh& mesh, float max_dihedral_deg) {
+    const float cos_max = std::cos(max_dihedral_deg * kPiF / 180.0f);
+    std::vector<Edge> stack;
+    std::vector<std::uint8_t> queued(mesh.edge_capacity(), 0);
+    for (std::uint32_t e = mesh.edge_capacity(); e-- > 0;)
+        if (!mesh.is_removed(Edge(e))) {
+            stack.push_back(Edge(e));
+            queued[e] = 1;
+        }
+    std::uint64_t flips = 0;
+    const std::uint64_t limit = 8ull * mesh.n_edges();
+    while (!stack.empty() && flips < limit) {
+        const Edge e = stack.back();
+        stack.pop_back();
+        queued[e.idx] = 0;
+        const Halfedge h = Mesh::halfedge(e, 0);
+        const Vertex a = mesh.from(h), b = mesh.to(h);
+        const Vertex c = mesh.to(mesh.next(h)), d = mesh.to(mesh.next(Mesh::twin(h)));
+        const Vec3 &pa = mesh.position(a), &pb = mesh.position(b), &pc = mesh.position(c), &pd = mesh.position(d);
+        // Not locally Delaunay: the angles opposite the edge sum to more than 180 degrees, that is
+        // cot(c) + cot(d) < 0 (with a margin, so that cocircular quads do not flip back and forth).
+        if (!(cot_at(pa, pb, pc) + cot_at(pa, pb, pd) < -1e-4f)) continue;
+        // Nearly coplanar before and after, the new triangles facing the old ones' side: the flip
+        // must not cut across a ridge or fold the surface.
+        const Vec3 n0 = normalized(cross(pb - pa, pc - pa)), n1 = normalized(cross(pa - pb, pd - pb));
+        if (dot(n0, n1) < cos_max) continue;
+        const Vec3 m0 = normalized(cross(pc - pd, pa - pd)), m1 = normalized(cross(pd - pc, pb - pc));
+        if (dot(m0, m1) < cos_max) continue;
+        const Vec3 side = n0 + n1;
+        if (dot(m0, side) <= 0.0f || dot(m1, side) <= 0.0f) continue;
+        if (!mesh.can_flip(h)) continue;
+        mesh.flip(h);
+        ++flips;
+        // The four edges of the quad may have stopped being locally Delaunay.
+        const Halfedge t = Mesh::twin(h);
+        for (const Halfedge g : {mesh.next(h), mesh.next(mesh.next(h)), mesh.next(t), mesh.next(mesh.next(t))}) {
+            const Edge ge = Mesh::edge(g);
+            if (!queued[ge.idx]) {
+                queued[ge.idx] = 1;
+                stack.push_back(ge);
+            }
+        }
+    }
+    return flips;
+}
+
+void relax_tangentially(Mesh& mesh, const CloudSurface* cloud) {
+    const std::vector<Vertex> verts = alive_vertices(mesh);
+    std::vector<Vec3> next(verts.size());
+    const float mean_edge = mean_edge_length(mesh);
+    for (std::size_t i = 0; i < verts.size(); ++i) next[i] = relaxed_position(mesh, verts[i], cloud, mean_edge);
+    for (std::size_t i = 0; i < verts.size(); ++i) mesh.set_position(verts[i], next[i]);
+}
+
+void fit_centroids(Mesh& mesh, const std::vector<Vec3>& cloud, float weight) {
+    const std::vector<Vertex> verts = alive_vertices(mesh);
+    const std::vector<Face> faces = alive_faces(mesh);
+    std::vector<Vec3> centroids(faces.size());
+    for (std::size_t i = 0; i < faces.size(); ++i) centroids[i] = mesh.face_centroid(faces[i]);
+    const PointGrid index(centroids);
+    std::vector<Vec3> pull(mesh.face_capacity());
+    std::vector<std::uint32_t> count(mesh.face_capacity(), 0);
+    for (const Vec3& x : cloud) {
+        const std::uint32_t j = index.nearest(x);
+        pull[faces[j].idx] += x - centroids[j];
+        ++count[faces[j].idx];
+    }
+    std::vector<Vec3> next(verts.size());
+    for (std::size_t i = 0; i < verts.size(); ++i) {
+        const Vertex v = verts[i];
+        const Vec3 p = mesh.position(v);
+        Vec3 centroid, normal, sum;
+        float area = 0.0f;
+        std::uint32_t n_points = 0;
+        mesh.for_each_outgoing(v, [&](Halfedge h) {
+            const Vec3& q1 = mesh.position(mesh.to(h));
+            const Vec3& q2 = mesh.position(mesh.to(mesh.next(h)));
+            const Vec3 x = cross(q1 - p, q2 - p);
+            const float a = norm(x);
+            centroid += (p + q1 + q2) * (a / 3.0f);
+            area += a;
+            normal += x;
+            sum += pull[mesh.face(h).idx];
+            n_points += count[mesh.face(h).idx];
+        });
+        const Vec3 n = normalized(normal);
+        Vec3 move;
+        if (area > 0.0f) move += (centroid * (1.0f / area) - p) * weight;
+        if (n_points > 0) move += sum * (weight / float(n_points));
+        next[i] = p + (move - n * dot(move, n));
+    }
+    for (std::size_t i = 0; i < verts.size(); ++i) mesh.set_position(verts[i], next[i]);
+}
+
+}  // namespace nmesh

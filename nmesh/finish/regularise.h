@@ -1,0 +1,33 @@
+// nmesh/finish/regularise.h — step 1 of the finishing stage: angle-improving flips, tangential relaxation
+// towards the cloud, and the optional centroid fit.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "nmesh/finish/cloud_surface.h"
+#include "nmesh/mesh/mesh.h"
+
+namespace nmesh {
+
+// Flips every edge whose two opposite angles sum to more than 180 degrees (it is not locally
+// Delaunay) when its two triangles are nearly coplanar before and after the flip (normals within
+// max_dihedral_deg of each other, the new triangles facing the old ones' side) and Mesh::can_flip
+// allows it, until no such edge is left (at most 8 flips per edge). Only the connectivity
+// changes. Returns the number of flips.
+std::uint64_t flip_to_delaunay(Mesh& mesh, float max_dihedral_deg = 20.0f);
+
+// One round of tangential relaxation (all vertices moved from their old positions): every vertex
+// moves to the area-weighted centroid of its triangles' centroids, minus the normal component of
+// that move; with `cloud`, it is then pulled towards the cloud by at most a quarter of its mean
+// edge length (CloudSurface::pull, reach: its mean edge length), and a vertex whose move would end
+// farther from the cloud than the mesh's mean edge length, and farther than it was, stays.
+void relax_tangentially(Mesh& mesh, const CloudSurface* cloud = nullptr);
+
+// One damped Lloyd step of the centroids towards the cloud (see FinishOptions::fit_rounds).
+void fit_centroids(Mesh& mesh, const std::vector<Vec3>& cloud, float weight);
+
+}  // namespace nmesh
