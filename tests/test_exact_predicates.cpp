@@ -302,6 +302,35 @@ TEST_CASE("exact predicates: orientation conventions") {
     CHECK(orient3d(fa, fb, fc, Vec3{0, 0, 1e-30f}) == -1);
 }
 
+TEST_CASE("exact predicates: single roundings that decide the sign") {
+    // Inputs whose differences and products are exact in double but where one addition rounds
+    // and that rounding is the whole determinant: a plain evaluation gives 0.
+    const double big = std::ldexp(1.0, 60), k = std::ldexp(1.0, 30);
+    struct Case {
+        Point3d a, b, c, d;
+        int sign;
+    };
+    const Case cases[] = {
+        // The terms are 2^60, 1 and -2^60: their first sum rounds.
+        {{1, 0, -big}, {0, 1, -1}, {1, 1, -big}, {0, 0, 0}, 1},
+        // The minor 2^30 2^30 - 1 rounds; the other terms cancel its rounded value.
+        {{0, 1, 1}, {k, 1, 0}, {1, k, k}, {0, 0, 0}, -1},
+        // The same, moved away from the origin by an exactly representable offset.
+        {{8, 9, 9}, {k + 8, 9, 8}, {9, k + 8, k + 8}, {8, 8, 8}, -1},
+    };
+    for (const Case& c : cases) {
+        CHECK(reference_orient3d(c.a, c.b, c.c, c.d) == c.sign);
+        CHECK(naive_orient3d(c.a, c.b, c.c, c.d) == 0);
+        CHECK(orient3d(c.a, c.b, c.c, c.d) == c.sign);
+        CHECK(orient3d(c.b, c.a, c.c, c.d) == -c.sign);
+    }
+    // 2D: the products 2^60 and 2^60 - 1 are exact, their difference 1 is too; with 2^30 + 1 the
+    // product (2^30 + 1)^2 rounds.
+    CHECK(orient2d({k + 1, 0}, {0, k + 1}, {0, 0}) == 1);
+    CHECK(orient2d({k + 1, k}, {k, k - 1}, {0, 0}) == reference_orient2d({k + 1, k}, {k, k - 1}, {0, 0}));
+    CHECK(reference_orient2d({k + 1, k}, {k, k - 1}, {0, 0}) == -1);
+}
+
 TEST_CASE("exact predicates: random well-conditioned inputs agree with the reference") {
     Rng rng(1);
     Tally t3, t2;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "nmesh/finish/cloud_surface.h"
+#include "nmesh/geometry/closest_point.h"
 #include "nmesh/mesh/mesh.h"
 #include "nmesh/spatial/point_grid.h"
 
@@ -120,35 +121,13 @@ inline Vec3 relaxed_position(const Mesh& mesh, Vertex v, const CloudSurface* clo
     return cloud->pull(q, n, kPullLimit * edge, edge, near);
 }
 
-// The closest point of the triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5).
-inline Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-    const Vec3 ab = b - a, ac = c - a, ap = p - a;
-    const float d1 = dot(ab, ap), d2 = dot(ac, ap);
-    if (d1 <= 0.0f && d2 <= 0.0f) return a;
-    const Vec3 bp = p - b;
-    const float d3 = dot(ab, bp), d4 = dot(ac, bp);
-    if (d3 >= 0.0f && d4 <= d3) return b;
-    const float vc = d1 * d4 - d3 * d2;
-    if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f) return a + ab * (d1 / (d1 - d3));
-    const Vec3 cp = p - c;
-    const float d5 = dot(ab, cp), d6 = dot(ac, cp);
-    if (d6 >= 0.0f && d5 <= d6) return c;
-    const float vb = d5 * d2 - d1 * d6;
-    if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f) return a + ac * (d2 / (d2 - d6));
-    const float va = d3 * d6 - d5 * d4;
-    if (va <= 0.0f && d4 - d3 >= 0.0f && d5 - d6 >= 0.0f) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    const float sum = va + vb + vc;
-    if (!(sum > 0.0f)) return a;  // a degenerate triangle
-    return a + ab * (vb / sum) + ac * (vc / sum);
-}
-
 // Distance from x to the triangles around v (an upper bound of its distance to the surface, and
 // close to it when v is the vertex nearest to x).
 inline float distance_to_ring(const Mesh& mesh, Vertex v, const Vec3& x) {
     float best = std::numeric_limits<float>::infinity();
     const Vec3& a = mesh.position(v);
     mesh.for_each_outgoing(v, [&](Halfedge h) {
-        const Vec3 y = closest_on_triangle(x, a, mesh.position(mesh.to(h)), mesh.position(mesh.to(mesh.next(h))));
+        const Vec3 y = closest_point_on_triangle_float(x, a, mesh.position(mesh.to(h)), mesh.position(mesh.to(mesh.next(h))));
         best = std::min(best, squared_distance(x, y));
     });
     return std::sqrt(best);
