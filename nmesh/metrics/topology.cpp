@@ -1,0 +1,148 @@
+#include "nmesh/metrics/topology.h"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <numeric>
+#include <vector>
+
+namespace nmesh::metrics_detail {
+namespace {
+
+using Eigen::Vector3d;
+Vector3d to_eigen(const Vec3& v) { return {double(v.x), double(v.y), double(v.z)}; }
+
+class UnionFind {
+public:
+    explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0u); }
+    std::uint32_t find(std::uint32_t x) {
+        while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+        return x;
+    }
+    void unite(std::uint32_t a, std::uint32_t b) {
+        a = find(a);
+        b = find(b);
+        if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+    }
+
+private:
+    std::vector<std::uint32_t> parent_;
+};
+
+bool has_repeated_vertex(const std::array<std::uint32_t, 3>& t) {
+    return t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+}
+
+}  // namespace
+
+bool is_degenerate(const IndexedMesh& mesh, const std::array<std::uint32_t, 3>& t) {
+    if (has_repeated_vertex(t)) return true;
+    const Vector3d a = to_eigen(mesh.positions[t[0]]);
+    const Vector3d n = (to_eigen(mesh.positions[t[1]]) - a).cross(to_eigen(mesh.positions[t[2]]) - a);
+    return n.squaredNorm() == 0.0;
+}
+
+// Fills the topology fields of the report.
+void analyze_topology(const IndexedMesh& mesh, QualityReport& r) {
+    const std::size_t nv = mesh.positions.size(), nf = mesh.triangles.size();
+
+    // Each directed edge of each triangle, grouped by undirected edge.
+    struct HalfEdge {
+        std::uint64_t key;  // (smaller vertex << 32) | larger vertex
+        std::uint32_t face;
+        std::uint8_t corner;  // the edge runs from corner `corner` to the next corner of `face`
+    };
+    std::vector<HalfEdge> half_edges;
+    half_edges.reserve(3 * nf);
+    bool manifold = true;
+    for (std::uint32_t f = 0; f < nf; ++f) {
+        const auto& t = mesh.triangles[f];
+        if (has_repeated_vertex(t)) manifold = false;  // an edge from a vertex to itself
+        for (std::uint8_t i = 0; i < 3; ++i) {
+            const std::uint32_t u = t[i], w = t[(i + 1) % 3];
+            if (u == w) continue;
+            half_edges.push_back({(std::uint64_t(std::min(u, w)) << 32) | std::max(u, w), f, i});
+        }
+    }
+    std::sort(half_edges.begin(), half_edges.end(),
+              [](const HalfEdge& a, const HalfEdge& b) { return a.key < b.key; });
+
+    // Edges: closed when all are shared by two triangles; manifold needs at most two, running in
+    // opposite directions. Corners around a vertex are linked through the edges they share, so
+    // that each vertex's fans can be counted.
+    bool closed = true;
+    std::size_t edges = 0;
+    UnionFind corners(3 * nf);
+    const auto from = [&](const HalfEdge& h) { return mesh.triangles[h.face][h.corner]; };
+    for (std::size_t i = 0; i < half_edges.size();) {
+        std::size_t j = i;
+        while (j < half_edges.size() && half_edges[j].key == half_edges[i].key) ++j;
+        ++edges;
+        const std::size_t count = j - i;
+        if (count != 2) closed = false;
+        if (count > 2) manifold = false;
+        if (count == 2) {
+            const HalfEdge &a = half_edges[i], &b = half_edges[i + 1];
+            if (from(a) == from(b)) manifold = false;  // both triangles run the edge the same way
+            // a runs u -> w; b runs w -> u (or u -> w when inconsistent): link the corners at u
+            // and at w of the two triangles.
+            const std::uint32_t a_from = 3 * a.face + a.corner, a_to = 3 * a.face + (a.corner + 1) % 3;
+            const std::uint32_t b_from = 3 * b.face + b.corner, b_to = 3 * b.face + (b.corner + 1) % 3;
+            if (from(a) == from(b)) {
+                corners.unite(a_from, b_from);
+                corners.unite(a_to, b_to);
+            } else {
+                corners.unite(a_from, b_to);
+                corners.unite(a_to, b_from);
+            }
+        }
+        i = j;
+    }
+    // One fan per vertex: all corners of a vertex in one linked group.
+    if (manifold) {
+        std::vector<std::uint32_t> fan(nv, std::numeric_limits<std::uint32_t>::max());
+        for (std::uint32_t c = 0; c < 3 * nf && manifold; ++c) {
+            const std::uint32_t v = mesh.triangles[c / 3][c % 3];
+            const std::uint32_t root = corners.find(c);
+            if (fan[v] == std::numeric_limits<std::uint32_t>::max()) fan[v] = root;
+            else if (fan[v] != root) manifold = false;
+        }
+    }
+
+    // Components through shared vertices, and the Euler characteristic of each.
+    std::vector<char> used(nv, 0);
+    UnionFind vertices(nv);
+    for (const auto& t : mesh.triangles) {
+        used[t[0]] = used[t[1]] = used[t[2]] = 1;
+        vertices.unite(t[0], t[1]);
+        vertices.unite(t[1], t[2]);
+    }
+    std::vector<long long> chi(nv, 0);  // indexed by component root
+    std::size_t referenced = 0, components = 0;
+    for (std::uint32_t v = 0; v < nv; ++v) {
+        if (!used[v]) continue;
+        ++referenced;
+        const std::uint32_t root = vertices.find(v);
+        if (root == v) ++components;
+        ++chi[root];
+    }
+    for (std::size_t i = 0; i < half_edges.size(); ++i)
+        if (i == 0 || half_edges[i].key != half_edges[i - 1].key)
+            --chi[vertices.find(std::uint32_t(half_edges[i].key >> 32))];
+    for (const auto& t : mesh.triangles) ++chi[vertices.find(t[0])];
+
+    r.closed = closed;
+    r.manifold = manifold;
+    r.euler = (long long)referenced - (long long)edges + (long long)nf;
+    r.components = components;
+    r.isolated_vertices = nv - referenced;
+    r.genus = -1;
+    if (closed && manifold) {
+        long long genus = 0;
+        for (std::uint32_t v = 0; v < nv; ++v)
+            if (used[v] && vertices.find(v) == v) genus += (2 - chi[v]) / 2;
+        r.genus = int(genus);
+    }
+}
+
+}  // namespace nmesh::metrics_detail
