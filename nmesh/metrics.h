@@ -14,7 +14,8 @@
 //                      they are listed in, their first corners or the vertex numbering.
 //   Hausdorff          max(point-to-surface max, surface-to-cloud max).
 //   topology           closed, manifold, Euler characteristic, genus, components,
-//                      self-intersections, degenerate triangles.
+//                      self-intersections (exact), degenerate triangles.
+//   orientation        signed volume, faces pointing inward.
 //   triangle quality   the smallest angle of each triangle: min, mean, share under 10 degrees.
 #pragma once
 
@@ -66,8 +67,16 @@ struct QualityReport {
     std::size_t components = 0;            // connected through shared vertices
     std::size_t isolated_vertices = 0;     // positions used by no triangle
     std::size_t degenerate_triangles = 0;  // a repeated vertex or zero area
-    std::size_t self_intersections = 0;    // intersecting pairs of non-degenerate triangles
-                                           // sharing no vertex
+    // Pairs of non-degenerate triangles that intersect, by an exact test: triangles sharing no
+    // vertex that have any point in common, triangles sharing one vertex that meet anywhere else
+    // (a fold round that vertex), triangles sharing an edge that overlap beyond it (folded flat
+    // onto each other).
+    std::size_t self_intersections = 0;
+    // Orientation. The signed volume is positive when a closed mesh faces outward; a face points
+    // inward when the point just off it along its normal is inside the surface (a nonzero
+    // winding number), which marks a part turned inside out (0 unless closed).
+    double signed_volume = 0.0;
+    std::size_t inward_faces = 0;
 
     // Triangle quality, from the smallest angle of each triangle (0 for degenerate ones).
     double min_angle_min_deg = 0.0;
@@ -108,9 +117,8 @@ std::vector<float> vertex_distances_to_cloud(PointSpan cloud, const IndexedMesh&
 double point_triangle_squared_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
 // Whether the closed triangles abc and def share at least one point (touching counts), coplanar
-// pairs included. Decided from orientation signs computed in double from the float coordinates,
-// so configurations within rounding of touching may go either way. Both triangles must be
-// non-degenerate.
+// pairs included, decided exactly from the float coordinates (adaptive-precision orientation
+// signs). Both triangles must be non-degenerate.
 bool triangles_intersect(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& e,
                          const Vec3& f);
 

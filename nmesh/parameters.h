@@ -18,6 +18,12 @@ struct Parameters {
     std::uint32_t cvs = 100; // step 7: a vertex split every Cvs iterations (>= 1)
     std::uint32_t cec = 20;  // step 8: inactive vertices removed every Cec * n iterations (>= 1)
     bool edge_swap = true;   // Neural Meshes ES; false gives the basic Neural Meshes algorithm
+    // Choice beyond the paper: step 3 may not fold the winner's triangles back against its fan,
+    // and a winner found folded moves to its ring's centroid instead (NeuralMesh::guard_fold).
+    // Without it, folds of the coarse early mesh grow into inside-out parts. Off by itself for a
+    // flat cloud, whose closed mesh must fold flat. false, with finish false, gives the paper's
+    // plain algorithm, bit for bit.
+    bool fold_guard = true;
     std::uint64_t seed = 1;  // the same seed and input give a bit-identical mesh
     // Iterations of steps 1-6 (no splits or collapses) run after the target size is reached, so
     // the last vertices settle onto the surface; in units of the final vertex count n
@@ -25,7 +31,7 @@ struct Parameters {
     double settle = 0.0;
     // The finishing stage (nmesh/finish/finish.h) once the target size is reached:
     // angle-improving flips and a tangential relaxation onto the cloud, then the repair of folds
-    // and self-intersections, keeping the vertex count. false gives the paper's plain algorithm.
+    // and self-intersections, keeping the vertex count.
     bool finish = true;
     // The finishing stage's regularisation rounds, in [0, 1000]. 0 leaves only the repair.
     std::uint32_t finish_rounds = 10;

@@ -22,8 +22,8 @@
 
 namespace nmesh {
 
-// Reported to the progress callback about every 2^16 iterations, and once when the learning
-// ends (before the finishing stage, which reports no progress).
+// Reported to the progress callback about every 2^16 iterations, once when the learning ends,
+// then during the finishing stage.
 struct Progress {
     std::uint32_t vertices = 0;
     std::uint32_t target_vertices = 0;
@@ -32,6 +32,11 @@ struct Progress {
     double setup_seconds = 0.0;  // the part of `seconds` before the first iteration (normalising
                                  // the cloud, building its nearest-point index)
     bool settling = false;
+    // The finishing stage, after the learning: its share done (0 to 1). The stage's reports come
+    // with `finishing` set, at most every 0.1 s; returning false from them changes nothing (the
+    // stage keeps the vertex count and is bounded by the learning's time).
+    bool finishing = false;
+    double finish_fraction = 0.0;
 };
 
 // The learning time left, in seconds, extrapolated from the progress so far: the iterations per

@@ -249,8 +249,7 @@ void record3(Tally& t, const Point3d& a, const Point3d& b, const Point3d& c, con
     if (naive_orient3d(a, b, c, d) != reference) ++t.naive_wrong;
     if (reference == 0) ++t.zeros;
     // Exchanging two points flips the sign; a cyclic shift of a, b, c keeps it.
-    if (orient3d(b, a, c, d) != -reference || orient3d(a, b, d, c) != -reference ||
-        orient3d(b, c, a, d) != reference)
+    if (orient3d(b, a, c, d) != -reference || orient3d(a, b, d, c) != -reference || orient3d(b, c, a, d) != reference)
         ++t.wrong;
 }
 
@@ -260,8 +259,7 @@ void record2(Tally& t, const Point2d& a, const Point2d& b, const Point2d& c) {
     if (orient2d(a, b, c) != reference) ++t.wrong;
     if (naive_orient2d(a, b, c) != reference) ++t.naive_wrong;
     if (reference == 0) ++t.zeros;
-    if (orient2d(b, a, c) != -reference || orient2d(b, c, a) != reference || orient2d(a, c, b) != -reference)
-        ++t.wrong;
+    if (orient2d(b, a, c) != -reference || orient2d(b, c, a) != reference || orient2d(a, c, b) != -reference) ++t.wrong;
 }
 
 }  // namespace
@@ -324,11 +322,11 @@ TEST_CASE("exact predicates: single roundings that decide the sign") {
         CHECK(orient3d(c.a, c.b, c.c, c.d) == c.sign);
         CHECK(orient3d(c.b, c.a, c.c, c.d) == -c.sign);
     }
-    // 2D: the products 2^60 and 2^60 - 1 are exact, their difference 1 is too; with 2^30 + 1 the
-    // product (2^30 + 1)^2 rounds.
-    CHECK(orient2d({k + 1, 0}, {0, k + 1}, {0, 0}) == 1);
-    CHECK(orient2d({k + 1, k}, {k, k - 1}, {0, 0}) == reference_orient2d({k + 1, k}, {k, k - 1}, {0, 0}));
-    CHECK(reference_orient2d({k + 1, k}, {k, k - 1}, {0, 0}) == -1);
+    // 2D: (2^30 + 1)(2^30 - 1) - 2^30 2^30 = -1, where the first product rounds to 2^60.
+    const Point2d p{k + 1, k}, q{k, k - 1}, o{0, 0};
+    CHECK(reference_orient2d(p, q, o) == -1);
+    CHECK(naive_orient2d(p, q, o) == 0);
+    CHECK(orient2d(p, q, o) == -1);
 }
 
 TEST_CASE("exact predicates: random well-conditioned inputs agree with the reference") {

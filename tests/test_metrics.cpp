@@ -638,10 +638,22 @@ TEST_CASE("self-intersections") {
         m.positions[3].z = 0.5f;  // lift the second above the first
         CHECK(quick_evaluate(m).self_intersections == 0);
     }
-    SUBCASE("triangles sharing a vertex are not counted") {
+    SUBCASE("triangles sharing a vertex count when they meet anywhere else") {
         IndexedMesh m;
         m.positions = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {1, 1, -1}, {1, 1, 1}};
         m.triangles = {{0, 1, 2}, {0, 3, 4}};  // the second passes through the first's interior
+        CHECK(quick_evaluate(m).self_intersections == 1);
+        m.positions[3] = {1, 1, 0.5f};  // now it leaves the shared vertex above the first
+        CHECK(quick_evaluate(m).self_intersections == 0);
+    }
+    SUBCASE("triangles sharing an edge count when folded flat onto each other") {
+        IndexedMesh m;
+        m.positions = {{0, 0, 0}, {4, 0, 0}, {1, 3, 0}, {2, 2, 0}};
+        m.triangles = {{0, 1, 2}, {1, 0, 3}};  // both opposite vertices on one side of the edge
+        CHECK(quick_evaluate(m).self_intersections == 1);
+        m.positions[3] = {2, -2, 0};  // a flat pair, one on each side: no overlap
+        CHECK(quick_evaluate(m).self_intersections == 0);
+        m.positions[3] = {2, 2, 1};  // bent along the edge: they meet only on it
         CHECK(quick_evaluate(m).self_intersections == 0);
     }
     SUBCASE("two overlapping spheres: as many as brute force finds") {
@@ -688,7 +700,40 @@ TEST_CASE("write_json writes every key once, with the report's values") {
     nmesh::write_text(out_text, r);
     const std::string text = out_text.str();
     CHECK(text.find("genus:") != std::string::npos);
-    CHECK(std::count(text.begin(), text.end(), '\n') == 28);
+    CHECK(std::count(text.begin(), text.end(), '\n') == 30);
+}
+
+TEST_CASE("orientation: the signed volume and the faces that point inward") {
+    const IndexedMesh sphere = icosphere(3);
+    const QualityReport out = quick_evaluate(sphere);
+    // The icosphere's volume approaches 4/3 pi from below; it faces outward everywhere.
+    CHECK(out.signed_volume > 0.95 * 4.18879);
+    CHECK(out.signed_volume < 4.18879);
+    CHECK(out.inward_faces == 0);
+
+    IndexedMesh inverted = sphere;  // every triangle reversed: inside out as a whole
+    for (auto& t : inverted.triangles) std::swap(t[1], t[2]);
+    const QualityReport in = quick_evaluate(inverted);
+    CHECK(in.signed_volume == doctest::Approx(-out.signed_volume));
+    CHECK(in.inward_faces == inverted.triangles.size());
+
+    // Half of the sphere reversed in place: a mesh whose halves face opposite ways, as a twisted
+    // learning leaves it. The reversed half points inward; the other half still outward.
+    IndexedMesh half = sphere;
+    std::size_t reversed = 0;
+    for (auto& t : half.triangles) {
+        const Vec3 c = (half.positions[t[0]] + half.positions[t[1]] + half.positions[t[2]]) * (1.0f / 3.0f);
+        if (c.z > 0.0f) {
+            std::swap(t[1], t[2]);
+            ++reversed;
+        }
+    }
+    const QualityReport h = quick_evaluate(half);
+    CHECK(reversed > 0);
+    CHECK(h.inward_faces > 0);
+    CHECK(h.inward_faces <= reversed);
+    CHECK(h.inward_faces >= reversed * 9 / 10);
+    CHECK(std::abs(h.signed_volume) < 0.5 * out.signed_volume);
 }
 
 TEST_CASE("evaluate rejects inputs it cannot measure") {

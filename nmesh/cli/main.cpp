@@ -55,7 +55,9 @@ constexpr const char* kReconstructUsage =
     "  --cvs N                a vertex split every N iterations (default 100)\n"
     "  --cec N                inactive vertices removed every N * n iterations (default 20)\n"
     "  --no-edge-swap         basic Neural Meshes (no edge swap after collapses)\n"
-    "  --no-finish            no finishing stage: the learnt mesh exactly as the paper's algorithm leaves it\n"
+    "  --no-fold-guard        let step 3 fold the winner's triangles, as the paper's algorithm does\n"
+    "  --no-finish            no finishing stage: the learnt mesh as it is (with --no-fold-guard, exactly as\n"
+    "                         the paper's algorithm leaves it)\n"
     "  --finish-rounds N      the finishing stage's regularisation rounds (default 10; 0: repair only)\n"
     "  --fit-rounds N         fit the triangles' centroids to the cloud points N times (default 0):\n"
     "                         lowers DM(X,T) at those points, not the distance to the surface\n"
@@ -149,7 +151,7 @@ int run_reconstruct(int argc, char** argv) {
         std::fputs(kReconstructUsage, stdout);
         return 0;
     }
-    const Arguments args(argc, argv, 2, {"--no-edge-swap", "--no-finish", "--quiet", "--ascii", "--save-on-interrupt"},
+    const Arguments args(argc, argv, 2, {"--no-edge-swap", "--no-fold-guard", "--no-finish", "--quiet", "--ascii", "--save-on-interrupt"},
                          {"-o", "--output", "--vertices", "--alpha-w", "--alpha-n", "--alpha", "--cvs", "--cec",
                           "--seed", "--snapshots", "--stats", "--settle", "--finish-rounds",
                           "--fit-rounds", "--index-points"});
@@ -189,6 +191,7 @@ int run_reconstruct(int argc, char** argv) {
     p.settle = args.number("--settle", p.settle);
     p.seed = args.count("--seed", p.seed);
     p.edge_swap = !args.has("--no-edge-swap");
+    p.fold_guard = !args.has("--no-fold-guard");
     p.finish = !args.has("--no-finish");
     p.finish_rounds = bounded_count("--finish-rounds", p.finish_rounds);
     p.fit_rounds = bounded_count("--fit-rounds", p.fit_rounds);
@@ -243,6 +246,11 @@ int run_reconstruct(int argc, char** argv) {
         return 130;
     }
     write_mesh(output, r.mesh, write_options);
+    if (r.stats.crossing_pairs > 0 || r.stats.inward_faces > 0)
+        std::fprintf(stderr,
+                     "nmesh: warning: %s is not a valid surface: %llu pairs of crossing triangles, %llu faces "
+                     "pointing inward\n",
+                     output.c_str(), (unsigned long long)r.stats.crossing_pairs, (unsigned long long)r.stats.inward_faces);
     if (args.has("--stats")) {
         const QualityReport q = evaluate_with_progress(cloud.points, r.mesh, quiet);
         write_file_atomically(stats_path, [&](std::ostream& o) { write_run_json(o, input, p, r, q); });

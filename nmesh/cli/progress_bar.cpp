@@ -23,6 +23,7 @@ std::string clock_text(double seconds) {
 
 void ProgressBar::update(const Progress& p) {
     if (mode_ == Mode::quiet) return;
+    if (p.finishing) return task("finishing (regularisation and repair)", p.finish_fraction, p.seconds);
     // Redraw a terminal at most 10 times a second; log a plain line every 5 seconds.
     const double interval = mode_ == Mode::terminal ? 0.1 : 5.0;
     if (last_print_ >= 0.0 && p.seconds - last_print_ < interval) return;

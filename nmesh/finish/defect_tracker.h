@@ -27,7 +27,7 @@ public:
         cell_ = grid_cell(mesh, faces);
         grid_ = std::make_unique<FaceGrid>(mesh, faces, cell_);
         grid_->for_each_pair([&](Face f, Face g) {
-            if (faces_intersect(mesh_, f, g)) pairs_.emplace_back(f, g);
+            if (mesh_faces_intersect(mesh_, f, g)) pairs_.emplace_back(f, g);
         });
         sort_unique(pairs_);
         for (std::uint32_t e = 0; e < mesh.edge_capacity(); ++e)
@@ -77,11 +77,11 @@ public:
             const Box box = face_box(mesh_, f);
             local.for_each_overlapping(box, [&](Face g) {
                 if (g == f || (state(g) == kRecent && g < f)) return;  // a recent pair once
-                if (faces_intersect(mesh_, f, g)) pairs_.emplace_back(f, g);
+                if (mesh_faces_intersect(mesh_, f, g)) pairs_.emplace_back(f, g);
             });
             grid_->for_each_overlapping(box, [&](Face g) {
                 if (state(g) != kUnchanged || mesh_.is_removed(g)) return;  // changed: in the small grid
-                if (faces_intersect(mesh_, f, g)) pairs_.emplace_back(f, g);
+                if (mesh_faces_intersect(mesh_, f, g)) pairs_.emplace_back(f, g);
             });
             Halfedge h = mesh_.halfedge(f);
             for (int i = 0; i < 3; ++i, h = mesh_.next(h)) {

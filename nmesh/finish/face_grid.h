@@ -9,7 +9,7 @@
 
 #include "nmesh/finish/mesh_queries.h"
 #include "nmesh/mesh/mesh.h"
-#include "nmesh/metrics.h"
+#include "nmesh/geometry/triangle_intersection.h"
 
 namespace nmesh::finish_detail {
 
@@ -148,16 +148,11 @@ inline float grid_cell(const Mesh& mesh, const std::vector<Face>& faces) {
     return mean > 0.0 ? float(2.0 * mean) : 1.0f;
 }
 
-// Whether two faces sharing no vertex, both non-degenerate, intersect (the metrics' rule).
-inline bool faces_intersect(const Mesh& mesh, Face f, Face g) {
+// Whether two faces intersect as a defect of the mesh: the exact rule of the metrics
+// (nmesh::faces_intersect, which judges faces sharing a vertex or an edge by what they share).
+inline bool mesh_faces_intersect(const Mesh& mesh, Face f, Face g) {
     const auto s = corners(mesh, f), t = corners(mesh, g);
-    for (const Vertex a : s)
-        for (const Vertex b : t)
-            if (a == b) return false;
-    const Vec3 &a = mesh.position(s[0]), &b = mesh.position(s[1]), &c = mesh.position(s[2]);
-    const Vec3 &d = mesh.position(t[0]), &e = mesh.position(t[1]), &f3 = mesh.position(t[2]);
-    if (squared_norm(cross(b - a, c - a)) == 0.0f || squared_norm(cross(e - d, f3 - d)) == 0.0f) return false;
-    return triangles_intersect(a, b, c, d, e, f3);
+    return nmesh::faces_intersect(mesh.positions().data(), {s[0].idx, s[1].idx, s[2].idx}, {t[0].idx, t[1].idx, t[2].idx});
 }
 
 inline void sort_unique(std::vector<std::pair<Face, Face>>& pairs) {

@@ -15,7 +15,7 @@ namespace nmesh {
 
 using namespace finish_detail;
 
-bool is_flat(const std::vector<Vec3>& cloud) {
+bool is_flat(PointSpan cloud) {
     if (cloud.size() < 4) return true;
     // The plane through three far-apart points, then whether any point lies off it.
     // Choice: the two far points are searched among every stride-th point only (about a million
@@ -46,7 +46,7 @@ bool is_flat(const std::vector<Vec3>& cloud) {
 }
 
 FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const FinishOptions& options,
-                         const PointGrid* cloud_index) {
+                         const PointGrid* cloud_index, const std::function<void(double fraction)>& progress) {
     const auto start = std::chrono::steady_clock::now();
     FinishReport report;
     mesh.build_faces();  // the learnt mesh comes without its face index (NeuralMesh::mesh)
@@ -59,18 +59,38 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
     std::unique_ptr<CloudSurface> surface;
     if (options.project) surface = std::make_unique<CloudSurface>(cloud, mesh, cloud_index);
     const CloudSurface* pull = surface.get();
+    // Progress over the stage's round budget: the regularisation and fit rounds, then the repair's.
+    const double budget = double(options.rounds + options.fit_rounds + std::max(options.repair_max_rounds, 0));
+    double done = 0.0;
+    const auto step = [&](double rounds) {
+        done += rounds;
+        if (progress && budget > 0.0) progress(std::min(1.0, done / budget));
+    };
+    const auto seconds_left = [&] {
+        if (options.seconds_limit <= 0.0) return 0.0;
+        const double used = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return std::max(1e-3, options.seconds_limit - used);  // > 0: a limit, however small
+    };
     for (int r = 0; r < options.rounds; ++r) {
         report.flips += flip_to_delaunay(mesh, options.flip_max_dihedral_deg);
         relax_tangentially(mesh, pull);
         ++report.relax_passes;
+        step(1);
     }
     for (int r = 0; r < options.fit_rounds; ++r) {
         fit_centroids(mesh, cloud, options.fit_weight);
         report.flips += flip_to_delaunay(mesh, options.flip_max_dihedral_deg);
+        step(1);
     }
     if (options.rounds > 0 || options.fit_rounds > 0) report.flips += flip_to_delaunay(mesh, options.flip_max_dihedral_deg);
     if (options.repair_max_rounds > 0) {
-        RepairResult r = repair_folds_and_intersections(mesh, options.repair_max_rounds, options.fold_dihedral_deg, pull);
+        int last_rounds = 0;
+        const auto on_round = [&](int rounds) {
+            step(0.5 * double(rounds - last_rounds));  // two repairs may share the budget
+            last_rounds = rounds;
+        };
+        RepairResult r = repair_folds_and_intersections(mesh, options.repair_max_rounds, options.fold_dihedral_deg,
+                                                        pull, seconds_left(), on_round);
         report.intersecting_pairs_before = r.intersecting_pairs_before;
         report.folded_edges_before = r.folded_edges_before;
         report.repair_rounds = r.rounds;
@@ -81,13 +101,16 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
         if (r.reverted && (options.rounds > 0 || options.fit_rounds > 0) &&
             r.intersecting_pairs > find_self_intersections(learnt).size()) {
             mesh = learnt;
-            r = repair_folds_and_intersections(mesh, options.repair_max_rounds, options.fold_dihedral_deg, pull);
+            last_rounds = 0;
+            r = repair_folds_and_intersections(mesh, options.repair_max_rounds, options.fold_dihedral_deg, pull,
+                                               seconds_left(), on_round);
             report.fallback = r.reverted ? FinishReport::Fallback::learnt_mesh : FinishReport::Fallback::repaired_learnt_mesh;
             report.repair_rounds += r.rounds;
         }
         report.intersecting_pairs_after = r.intersecting_pairs;
         report.folded_edges_after = r.folded_edges;
     }
+    if (progress) progress(1.0);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return report;
 }

@@ -35,6 +35,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -71,6 +72,10 @@ struct FinishOptions {
     // the measure, not a better surface; hence off.
     int fit_rounds = 0;
     float fit_weight = 0.3f;
+    // Wall-clock limit of the stage in seconds, 0 for none. The repair stops its rounds once the
+    // limit is reached and keeps what it has achieved when that is an improvement
+    // (repair_folds_and_intersections); reconstruct() gives the stage the learning's own time.
+    double seconds_limit = 0.0;
 };
 
 struct FinishReport {
@@ -98,10 +103,13 @@ struct FinishReport {
 // `cloud_index`: a nearest-point index over exactly the points of `cloud`, in the same order and
 // frame (for instance the learning engine's, built over the same points through a
 // PointTransform), which then is not built again; null: the stage builds its own.
+// `progress` (may be empty) is called after each round with the share of the stage's round
+// budget done (0 to 1), and with 1 at the end.
 FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const FinishOptions& options = {},
-                         const PointGrid* cloud_index = nullptr);
+                         const PointGrid* cloud_index = nullptr,
+                         const std::function<void(double fraction)>& progress = {});
 
 // Whether all the points lie in one plane (up to 1e-6 of their extent).
-bool is_flat(const std::vector<Vec3>& cloud);
+bool is_flat(PointSpan cloud);
 
 }  // namespace nmesh

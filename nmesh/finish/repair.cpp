@@ -2,6 +2,7 @@
 #include "nmesh/finish/repair.h"
 
 #include <algorithm>
+#include <chrono>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -22,7 +23,7 @@ std::vector<std::pair<Face, Face>> find_self_intersections(const Mesh& mesh) {
     const FaceGrid grid(mesh, faces, grid_cell(mesh, faces));
     std::vector<std::pair<Face, Face>> pairs;
     grid.for_each_pair([&](Face f, Face g) {
-        if (faces_intersect(mesh, f, g)) pairs.emplace_back(f, g);
+        if (mesh_faces_intersect(mesh, f, g)) pairs.emplace_back(f, g);
     });
     sort_unique(pairs);
     return pairs;
@@ -59,12 +60,18 @@ Vertex split_edge(Mesh& mesh, Halfedge h) {
 //   5. tests the changed triangles again (DefectTracker).
 // Once no defect is left, the vertices the smoothing moved are pulled back towards the cloud
 // (kRefitIterations rounds of relaxed_position), each move kept only where it creates no defect.
-// All or nothing: if a defect is left after max_rounds, or the repair raises the Hausdorff
-// distance between mesh and cloud (as estimated by HausdorffEstimate) by more
-// than half the mean edge length, the mesh is put back as it came. Undoing a tangle may cost some
+// If the repair raises the Hausdorff distance between mesh and cloud (as estimated by
+// HausdorffEstimate) by more than half the mean edge length, or leaves defects after max_rounds
+// without having reduced them, the mesh is put back as it came. Undoing a tangle may cost some
 // fidelity where the tangle was (it followed the data, badly), but only locally.
 RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fold_dihedral_deg,
-                                            const CloudSurface* cloud) {
+                                            const CloudSurface* cloud, double seconds_limit,
+                                            const std::function<void(int rounds)>& on_round) {
+    const auto start = std::chrono::steady_clock::now();
+    const auto out_of_time = [&] {
+        return seconds_limit > 0.0 &&
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >= seconds_limit;
+    };
     RepairResult result;
     DefectTracker tracker(mesh, std::cos(fold_dihedral_deg * kPiF / 180.0f));
     result.intersecting_pairs_before = tracker.pairs().size();
@@ -175,8 +182,11 @@ RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fo
         }
         // 5. Test again.
         tracker.check();
+        if (on_round) on_round(result.rounds);
+        if (out_of_time()) break;
     }
-    bool ok = tracker.clean() && mesh.n_vertices() == target;
+    const bool counted = mesh.n_vertices() == target;
+    bool ok = tracker.clean() && counted;
 
     // The pull back towards the cloud, guarded.
     if (ok && cloud) {
@@ -217,14 +227,20 @@ RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fo
         }
         ok = tracker.clean();
     }
-    if (ok && cloud) ok = estimate->after(mesh, tracker.changed_faces()) <= estimate->value() + 0.5f * mean_len;
-    if (!ok) {
+    const bool near_cloud =
+        !cloud || estimate->after(mesh, tracker.changed_faces()) <= estimate->value() + 0.5f * mean_len;
+    // A repair that leaves defects is kept when it leaves fewer intersecting pairs than it found
+    // (and no more folded edges), so that the defects it could not remove do not undo those it
+    // did; the mesh is put back otherwise.
+    const bool better = counted && tracker.pairs().size() < result.intersecting_pairs_before &&
+                        tracker.folds().size() <= result.folded_edges_before;
+    if (!near_cloud || !(ok || better)) {
         mesh = original;
         result.reverted = true;
         return result;
     }
-    result.intersecting_pairs = 0;
-    result.folded_edges = 0;
+    result.intersecting_pairs = ok ? 0 : tracker.pairs().size();
+    result.folded_edges = ok ? 0 : tracker.folds().size();
     return result;
 }
 

@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -12,10 +13,10 @@
 
 namespace nmesh {
 
-// Every pair of triangles that share no vertex and intersect (touching counts), as
-// nmesh::triangles_intersect decides, each pair once, smaller face first, sorted; degenerate
-// triangles are skipped, as the metrics do. Expected O(F) through a hash grid of the triangles'
-// bounding boxes.
+// Every pair of triangles that intersect as nmesh::faces_intersect decides (exactly; pairs that
+// share a vertex or an edge by what else they share), each pair once, smaller face first,
+// sorted; degenerate triangles are skipped, as the metrics do. Expected O(F) through a hash grid
+// of the triangles' bounding boxes.
 std::vector<std::pair<Face, Face>> find_self_intersections(const Mesh& mesh);
 
 // Edges whose two triangles' normals differ by more than `dihedral_deg`, and edges of degenerate
@@ -38,7 +39,10 @@ struct RepairResult {
 // Step 2 of the stage (see finish.cpp for the details). With `cloud`, the smoothed vertices are
 // pulled back towards it, and the repair is undone if it raises the (estimated) Hausdorff distance
 // to the cloud by more than half the mean edge length. Keeps the vertex count; all or nothing.
+// `seconds_limit` (0: none) stops the rounds once that much wall time has passed since the call;
+// `on_round` (may be empty) is called after each round with the rounds done.
 RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds = 40, float fold_dihedral_deg = 120.0f,
-                                            const CloudSurface* cloud = nullptr);
+                                            const CloudSurface* cloud = nullptr, double seconds_limit = 0.0,
+                                            const std::function<void(int rounds)>& on_round = {});
 
 }  // namespace nmesh

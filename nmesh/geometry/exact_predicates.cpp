@@ -89,13 +89,14 @@ int scale(const double* e, int en, double b, double* h) {
     return n;
 }
 
-// h = e * f for f of at most two components, as e scaled by each; h has room for 4 en components.
+// h = e * f for e of at most 16 components and f of at most two, as e scaled by each; h has room
+// for 4 en components.
 int multiply(const double* e, int en, const double* f, int fn, double* h) {
-    assert(fn <= 2 && en <= 32);
+    assert(fn <= 2 && en <= 16);
     if (fn == 1) return scale(e, en, f[0], h);
     int n = 0;
     for (int j = 0; j < fn; ++j) {
-        double part[2 * 32];
+        double part[2 * 16];
         const int pn = scale(e, en, f[j], part);
         for (int i = 0; i < pn; ++i) n = grow(h, n, part[i]);
     }
@@ -193,7 +194,7 @@ int orient3d_exact(const Point3d& a, const Point3d& b, const Point3d& c, const P
 // Shewchuk's bounds on the error of the straightforward evaluations below (including the rounding
 // of the input differences), relative to the permanent: the same expression with every product
 // replaced by its absolute value. When the computed determinant exceeds the bound its sign is
-// exact. Half a unit in the last place of 1.
+// exact. kEpsilon is half a unit in the last place of 1.
 constexpr double kEpsilon = std::numeric_limits<double>::epsilon() / 2.0;
 constexpr double kOrient2dBound = (3.0 + 16.0 * kEpsilon) * kEpsilon;
 constexpr double kOrient3dBound = (7.0 + 56.0 * kEpsilon) * kEpsilon;

@@ -2,12 +2,14 @@
 // coordinates.
 //
 // Each predicate returns the exact sign of its determinant: a floating-point evaluation decides
-// when its error bound allows (almost always), and an exact evaluation in floating-point
-// expansion arithmetic decides otherwise. No heap allocation.
+// when its error bound allows (almost always); otherwise the same evaluation with its rounding
+// errors computed decides if they are all zero (inputs of few significant bits, such as integer
+// coordinates), and an exact evaluation in floating-point expansion arithmetic decides the rest.
+// No heap allocation.
 //
 // Exact for finite inputs whose every coordinate is 0 or of magnitude in [2^-256, 2^256]: then no
 // intermediate value overflows or underflows. Every finite float lies in that range, so the Vec3
-// overloads are exact for all finite positions. Requires IEEE-754 double arithmetic rounding to
+// overload is exact for all finite positions. Requires IEEE-754 double arithmetic rounding to
 // nearest (no x87 extended precision, no -ffast-math or other reassociation).
 #pragma once
 

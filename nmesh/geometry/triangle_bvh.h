@@ -1,9 +1,10 @@
 // nmesh/geometry/triangle_bvh.h — a bounding-volume hierarchy over the triangles of a mesh: the
-// nearest triangle to a point, and every pair of triangles whose boxes overlap.
+// nearest triangle to a point, and the triangles along a ray.
 #pragma once
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -87,10 +88,30 @@ public:
         return best;
     }
 
-    // Calls visit(s, t) once for every unordered pair of distinct triangles whose boxes overlap.
+    // Calls visit(t) for every triangle whose box the ray from `origin` along +x meets (a superset
+    // of the triangles the ray crosses).
     template <class Visit>
-    void for_each_overlapping_pair(Visit&& visit) const {
-        self_pairs(0, visit);
+    void for_each_on_ray_x(const Vec3& origin, Visit&& visit) const {
+        if (nodes_.empty() || mesh_.triangles.empty()) return;
+        std::uint32_t stack[64];
+        int top = 0;
+        stack[top++] = 0;
+        const auto meets = [&](const BoundingBox& b) {
+            return b.max.x >= origin.x && b.min.y <= origin.y && origin.y <= b.max.y && b.min.z <= origin.z &&
+                   origin.z <= b.max.z;
+        };
+        while (top > 0) {
+            const Node& n = nodes_[stack[--top]];
+            if (!meets(n.box)) continue;
+            if (n.count > 0) {
+                for (std::uint32_t i = n.first; i < n.first + n.count; ++i)
+                    if (meets(boxes_[order_[i]])) visit(order_[i]);
+                continue;
+            }
+            assert(top + 2 <= 64);
+            stack[top++] = n.first;
+            stack[top++] = n.first + 1;
+        }
     }
 
 private:
@@ -109,11 +130,6 @@ private:
             d2 += g * g;
         }
         return d2;
-    }
-
-    static bool boxes_overlap(const BoundingBox& a, const BoundingBox& b) {
-        return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y &&
-               a.min.z <= b.max.z && b.min.z <= a.max.z;
     }
 
     // Builds the subtree of `node` over order_[first, last) and sets its box.
@@ -158,43 +174,6 @@ private:
             u.max[i] = a.max[i] > b.max[i] ? a.max[i] : b.max[i];
         }
         return u;
-    }
-
-    template <class Visit>
-    void leaf_pairs(const Node& a, const Node& b, Visit& visit) const {
-        for (std::uint32_t i = a.first; i < a.first + a.count; ++i)
-            for (std::uint32_t j = b.first; j < b.first + b.count; ++j)
-                if (boxes_overlap(boxes_[order_[i]], boxes_[order_[j]])) visit(order_[i], order_[j]);
-    }
-
-    template <class Visit>
-    void self_pairs(std::uint32_t node, Visit& visit) const {
-        const Node& n = nodes_[node];
-        if (n.count > 0) {
-            for (std::uint32_t i = n.first; i < n.first + n.count; ++i)
-                for (std::uint32_t j = i + 1; j < n.first + n.count; ++j)
-                    if (boxes_overlap(boxes_[order_[i]], boxes_[order_[j]])) visit(order_[i], order_[j]);
-            return;
-        }
-        self_pairs(n.first, visit);
-        self_pairs(n.first + 1, visit);
-        cross_pairs(n.first, n.first + 1, visit);
-    }
-
-    template <class Visit>
-    void cross_pairs(std::uint32_t a, std::uint32_t b, Visit& visit) const {
-        const Node& na = nodes_[a];
-        const Node& nb = nodes_[b];
-        if (!boxes_overlap(na.box, nb.box)) return;
-        if (na.count > 0 && nb.count > 0) {
-            leaf_pairs(na, nb, visit);
-        } else if (na.count > 0) {
-            cross_pairs(a, nb.first, visit);
-            cross_pairs(a, nb.first + 1, visit);
-        } else {
-            cross_pairs(na.first, b, visit);
-            cross_pairs(na.first + 1, b, visit);
-        }
     }
 
     const IndexedMesh& mesh_;

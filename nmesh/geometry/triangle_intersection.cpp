@@ -21,9 +21,12 @@ using Face = std::array<std::uint32_t, 3>;
 // The projection dropping axis k (0: x, 1: y, 2: z).
 Point2d project(const Vec3& v, int k) {
     switch (k) {
-        case 0: return {double(v.y), double(v.z)};
-        case 1: return {double(v.x), double(v.z)};
-        default: return {double(v.x), double(v.y)};
+        case 0:
+            return {double(v.y), double(v.z)};
+        case 1:
+            return {double(v.x), double(v.z)};
+        default:
+            return {double(v.x), double(v.y)};
     }
 }
 
@@ -39,9 +42,7 @@ int projection_axis(const Vec3& a, const Vec3& b, const Vec3& c) {
     return -1;
 }
 
-bool mixed_signs(int s1, int s2, int s3) {
-    return (s1 > 0 || s2 > 0 || s3 > 0) && (s1 < 0 || s2 < 0 || s3 < 0);
-}
+bool mixed_signs(int s1, int s2, int s3) { return (s1 > 0 || s2 > 0 || s3 > 0) && (s1 < 0 || s2 < 0 || s3 < 0); }
 
 // Whether c, collinear with a and b, lies on the closed segment ab: within its bounding box.
 bool on_segment_2d(const Point2d& a, const Point2d& b, const Point2d& c) {
@@ -66,62 +67,58 @@ bool point_in_triangle_2d(const Point2d& p, const Point2d& a, const Point2d& b, 
 }
 
 // Whether the segment pq, lying in the plane of the triangle abc, meets it: an endpoint inside, or
-// the segment crossing an edge.
-bool coplanar_segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
-                                     const Vec3& c) {
+// the segment meeting an edge.
+bool coplanar_segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
     const int k = projection_axis(a, b, c);
     if (k < 0) return false;
     const Point2d p2 = project(p, k), q2 = project(q, k);
     const Point2d a2 = project(a, k), b2 = project(b, k), c2 = project(c, k);
     return point_in_triangle_2d(p2, a2, b2, c2) || point_in_triangle_2d(q2, a2, b2, c2) ||
-           segments_meet_2d(p2, q2, a2, b2) || segments_meet_2d(p2, q2, b2, c2) ||
-           segments_meet_2d(p2, q2, c2, a2);
+           segments_meet_2d(p2, q2, a2, b2) || segments_meet_2d(p2, q2, b2, c2) || segments_meet_2d(p2, q2, c2, a2);
 }
 
 // Two triangles P and Q lying in one plane, projected on a coordinate plane on which P (hence Q)
 // is non-degenerate, with the sides of each one's corners relative to the other's edge lines:
 // p_side[m][k] = orient2d(Q[k], Q[k+1], P[m]) and q_side[m][k] = orient2d(P[k], P[k+1], Q[m]).
 // The edge tests read these 18 signs only.
+//
+// An edge test reports an end of the edge inside the other triangle, or a proper crossing of one
+// of its edges (at a point interior to both). Any other contact between an edge and the other
+// triangle puts a corner of that triangle on the edge: the test of an edge ending at that corner,
+// run by the caller, sees the corner inside.
 class CoplanarTriangles {
 public:
-    CoplanarTriangles(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& q0, const Vec3& q1,
-                      const Vec3& q2, int axis)
-        : p_{project(p0, axis), project(p1, axis), project(p2, axis)},
-          q_{project(q0, axis), project(q1, axis), project(q2, axis)} {
+    CoplanarTriangles(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& q0, const Vec3& q1, const Vec3& q2,
+                      int axis) {
+        const Point2d p[3] = {project(p0, axis), project(p1, axis), project(p2, axis)};
+        const Point2d q[3] = {project(q0, axis), project(q1, axis), project(q2, axis)};
         for (int m = 0; m < 3; ++m)
             for (int k = 0; k < 3; ++k) {
-                p_side_[m][k] = orient2d(q_[k], q_[(k + 1) % 3], p_[m]);
-                q_side_[m][k] = orient2d(p_[k], p_[(k + 1) % 3], q_[m]);
+                p_side_[m][k] = orient2d(q[k], q[(k + 1) % 3], p[m]);
+                q_side_[m][k] = orient2d(p[k], p[(k + 1) % 3], q[m]);
             }
     }
 
-    // Whether the edge from corner i to corner i + 1 of P meets the closed Q, and the converse.
-    bool p_edge_meets_q(int i) const { return edge_meets(p_, q_, p_side_, q_side_, i); }
-    bool q_edge_meets_p(int i) const { return edge_meets(q_, p_, q_side_, p_side_, i); }
+    // The edge from corner i to corner i + 1 of P against Q, and the converse.
+    bool p_edge_meets_q(int i) const { return edge_meets(p_side_, q_side_, i); }
+    bool q_edge_meets_p(int i) const { return edge_meets(q_side_, p_side_, i); }
 
 private:
-    // Edge i of triangle e against triangle t, given e_side[m][k], the side of e's corner m
-    // relative to t's edge k, and t_side[m][k], the side of t's corner m relative to e's edge k:
-    // an end inside t, or a crossing or touching of one of t's edges.
-    static bool edge_meets(const Point2d (&e)[3], const Point2d (&t)[3], const int (&e_side)[3][3],
-                           const int (&t_side)[3][3], int i) {
+    // Edge i of a triangle e against a triangle t, given e_side[m][k], the side of e's corner m
+    // relative to t's edge k, and t_side[m][k], the side of t's corner m relative to e's edge k.
+    static bool edge_meets(const int (&e_side)[3][3], const int (&t_side)[3][3], int i) {
         const int j = (i + 1) % 3;
         if (!mixed_signs(e_side[i][0], e_side[i][1], e_side[i][2]) ||
             !mixed_signs(e_side[j][0], e_side[j][1], e_side[j][2]))
             return true;
         for (int k = 0; k < 3; ++k) {
-            const int l = (k + 1) % 3;
-            const int d1 = e_side[i][k], d2 = e_side[j][k];  // the edge's ends against t's edge line k
-            const int d3 = t_side[k][i], d4 = t_side[l][i];  // t's edge k's ends against the edge's line
-            if (d1 * d2 < 0 && d3 * d4 < 0) return true;
-            if ((d1 == 0 && on_segment_2d(t[k], t[l], e[i])) || (d2 == 0 && on_segment_2d(t[k], t[l], e[j])) ||
-                (d3 == 0 && on_segment_2d(e[i], e[j], t[k])) || (d4 == 0 && on_segment_2d(e[i], e[j], t[l])))
-                return true;
+            // The edge's ends strictly on both sides of t's edge line k, and t's edge k's ends
+            // strictly on both sides of the edge's line.
+            if (e_side[i][k] * e_side[j][k] < 0 && t_side[k][i] * t_side[(k + 1) % 3][i] < 0) return true;
         }
         return false;
     }
 
-    Point2d p_[3], q_[3];
     int p_side_[3][3], q_side_[3][3];
 };
 
@@ -129,8 +126,7 @@ private:
 
 // Whether the closed segment pq meets the closed triangle abc, given sp = orient3d(a, b, c, p) and
 // sq = orient3d(a, b, c, q).
-bool segment_meets_triangle(const Vec3& p, const Vec3& q, int sp, int sq, const Vec3& a, const Vec3& b,
-                            const Vec3& c) {
+bool segment_meets_triangle(const Vec3& p, const Vec3& q, int sp, int sq, const Vec3& a, const Vec3& b, const Vec3& c) {
     if (sp == sq) {
         if (sp != 0) return false;  // both strictly on one side of the plane
         return coplanar_segment_meets_triangle(p, q, a, b, c);
@@ -145,8 +141,8 @@ bool segment_meets_triangle(const Vec3& p, const Vec3& q, int sp, int sq, const 
 
 // Whether some edge of the triangle abc meets the triangle def, given the sides sa, sb, sc of a,
 // b, c with respect to the plane of def.
-bool edges_meet_triangle(const Vec3& a, const Vec3& b, const Vec3& c, int sa, int sb, int sc,
-                         const Vec3& d, const Vec3& e, const Vec3& f) {
+bool edges_meet_triangle(const Vec3& a, const Vec3& b, const Vec3& c, int sa, int sb, int sc, const Vec3& d,
+                         const Vec3& e, const Vec3& f) {
     return segment_meets_triangle(a, b, sa, sb, d, e, f) || segment_meets_triangle(b, c, sb, sc, d, e, f) ||
            segment_meets_triangle(c, a, sc, sa, d, e, f);
 }
@@ -187,13 +183,15 @@ bool nondegenerate_faces_intersect(const Vec3* positions, const Face& t, const F
             // common, the ray from v through x leaves t at a point y of ab (t is the union of the
             // segments from v to the points of ab) and leaves u at a point z of cd; both [v, y]
             // and [v, z] lie on the ray and contain x, so the nearer of y and z lies in both
-            // triangles. Conversely no point of ab or cd is v.
+            // triangles. Conversely a common point on ab or cd is not v, which neither contains.
             const int i = t_shared[0] ? 0 : (t_shared[1] ? 1 : 2);
             const int j = u_shared[0] ? 0 : (u_shared[1] ? 1 : 2);
             const Vec3 &v = at(t[i]), &a = at(t[(i + 1) % 3]), &b = at(t[(i + 2) % 3]);
             const Vec3 &c = at(u[(j + 1) % 3]), &d = at(u[(j + 2) % 3]);
             const int sa = orient3d(v, c, d, a), sb = orient3d(v, c, d, b);
             if (sa == 0 && sb == 0) {  // t lies in the plane of u
+                // The edge tests of ab and cd cover each other's contacts at a corner (v lies on
+                // neither segment).
                 const CoplanarTriangles pair(v, a, b, v, c, d, projection_axis(v, a, b));
                 return pair.p_edge_meets_q(1) || pair.q_edge_meets_p(1);
             }
@@ -201,7 +199,7 @@ bool nondegenerate_faces_intersect(const Vec3* positions, const Face& t, const F
             return segment_meets_triangle(a, b, sa, sb, v, c, d) ||
                    segment_meets_triangle(c, d, orient3d(v, a, b, c), orient3d(v, a, b, d), v, a, b);
         }
-        case 2: {
+        case 2: {  // t = (p, q, a), u = (p, q, b)
             const int i = !t_shared[0] ? 0 : (!t_shared[1] ? 1 : 2);
             const int j = !u_shared[0] ? 0 : (!u_shared[1] ? 1 : 2);
             return folded(at(t[(i + 1) % 3]), at(t[(i + 2) % 3]), at(t[i]), at(u[j]));
@@ -239,8 +237,7 @@ template <class Visit>
 void for_each_intersecting_pair(const IndexedMesh& mesh, Visit&& visit) {
     const std::size_t face_count = mesh.triangles.size();
     const std::size_t vertex_count = mesh.positions.size();
-    if (face_count > std::size_t(UINT32_MAX))
-        throw InputError("self_intersecting_pairs: more than 2^32 - 1 triangles");
+    if (face_count > std::size_t(UINT32_MAX)) throw InputError("self_intersecting_pairs: more than 2^32 - 1 triangles");
     const Vec3* positions = mesh.positions.data();
 
     std::vector<std::uint32_t> faces;  // the faces tested, increasing
@@ -340,8 +337,8 @@ void for_each_intersecting_pair(const IndexedMesh& mesh, Visit&& visit) {
                 for (int x = a.cell_lo[0]; x <= a.cell_hi[0]; ++x) {
                     const std::size_t c = cell_id(x, y, z);
                     const std::uint32_t* const end = listed + start[c + 1];
-                    for (const std::uint32_t* e = std::upper_bound(listed + start[c], end, std::uint32_t(i));
-                         e != end; ++e) {
+                    for (const std::uint32_t* e = std::upper_bound(listed + start[c], end, std::uint32_t(i)); e != end;
+                         ++e) {
                         const FaceBox& b = boxes[*e];
                         if (std::max(a.cell_lo[0], b.cell_lo[0]) != x || std::max(a.cell_lo[1], b.cell_lo[1]) != y ||
                             std::max(a.cell_lo[2], b.cell_lo[2]) != z)
@@ -360,13 +357,12 @@ void for_each_intersecting_pair(const IndexedMesh& mesh, Visit&& visit) {
 
 bool triangle_degenerate(const Vec3& a, const Vec3& b, const Vec3& c) { return projection_axis(a, b, c) < 0; }
 
-bool segment_intersects_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
-                                 const Vec3& c) {
+bool segment_intersects_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
     return segment_meets_triangle(p, q, orient3d(a, b, c, p), orient3d(a, b, c, q), a, b, c);
 }
 
-bool triangles_intersect_exact(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d,
-                               const Vec3& e, const Vec3& f) {
+bool triangles_intersect_exact(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& e,
+                               const Vec3& f) {
     const int sd = orient3d(a, b, c, d), se = orient3d(a, b, c, e), sf = orient3d(a, b, c, f);
     if (sd == se && se == sf && sd != 0) return false;  // def strictly on one side of abc's plane
     // In one plane, either the boundaries meet or one triangle contains the other (then its
@@ -393,7 +389,7 @@ bool faces_intersect(const Vec3* positions, std::array<std::uint32_t, 3> t, std:
 }
 
 std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(const IndexedMesh& mesh,
-                                                                               std::size_t max_pairs) {
+                                                                             std::size_t max_pairs) {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
     if (max_pairs == 0) return pairs;
     for_each_intersecting_pair(mesh, [&](std::uint32_t s, std::uint32_t t) {

@@ -23,13 +23,12 @@ bool triangle_degenerate(const Vec3& a, const Vec3& b, const Vec3& c);
 
 // Whether the closed segment pq meets the closed triangle abc, which must not be degenerate.
 // pq may lie in the plane of abc, or be a single point (p == q).
-bool segment_intersects_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
-                                 const Vec3& c);
+bool segment_intersects_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c);
 
 // Whether the closed triangles abc and def, neither degenerate, have a point in common: touching
 // at a point or along a segment counts, and coplanar triangles are handled.
-bool triangles_intersect_exact(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d,
-                               const Vec3& e, const Vec3& f);
+bool triangles_intersect_exact(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& e,
+                               const Vec3& f);
 
 // Whether two faces of a mesh, given by vertex indices into `positions`, intersect as a defect of
 // the mesh, judged by the indices they share:
@@ -41,8 +40,7 @@ bool triangles_intersect_exact(const Vec3& a, const Vec3& b, const Vec3& c, cons
 //   - all three (the same face twice): always.
 // Faces that are degenerate (a repeated index, or zero area) are not judged by this rule: the
 // result is false.
-bool faces_intersect(const Vec3* positions, std::array<std::uint32_t, 3> t,
-                     std::array<std::uint32_t, 3> u);
+bool faces_intersect(const Vec3* positions, std::array<std::uint32_t, 3> t, std::array<std::uint32_t, 3> u);
 
 // The pairs (s, t), s < t, of non-degenerate faces of `mesh` that intersect by faces_intersect,
 // sorted. At most max_pairs are returned: the first max_pairs of the full sorted list. Faces with
@@ -50,8 +48,8 @@ bool faces_intersect(const Vec3* positions, std::array<std::uint32_t, 3> t,
 // to a missing position.
 // A uniform grid over the faces' bounding boxes finds the candidate pairs (boxes that overlap or
 // touch), each tested exactly once: about O(F) for a mesh whose faces are of similar size.
-std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(
-    const IndexedMesh& mesh, std::size_t max_pairs = SIZE_MAX);
+std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(const IndexedMesh& mesh,
+                                                                             std::size_t max_pairs = SIZE_MAX);
 
 // The number of pairs self_intersecting_pairs would return without a limit.
 std::size_t count_self_intersections(const IndexedMesh& mesh);

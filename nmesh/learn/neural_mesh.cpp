@@ -95,10 +95,85 @@ Vec3 NeuralMesh::next_sample() {
     return x;
 }
 
-// Step 3, eq. (2): v'_w = (1 - alpha_w) v_w + alpha_w x.
-void NeuralMesh::move_winner(Vertex w, const Vec3& x) {
+// Step 3, eq. (2): v'_w = (1 - alpha_w) v_w + alpha_w x, unless it folds w's fan (guard_fold).
+// `ring` holds w's k neighbours (ring_of).
+void NeuralMesh::move_winner(Vertex w, const Vec3& x, const std::uint32_t* ring, std::uint32_t k) {
     const float aw = float(params_.alpha_w);
-    set_position(w, mesh_.position(w) * (1.0f - aw) + x * aw);
+    const Vec3 p = mesh_.position(w);
+    const Vec3 q = p * (1.0f - aw) + x * aw;
+    set_position(w, params_.fold_guard ? guard_fold(p, q, ring, k) : q);
+}
+
+// Choice beyond the paper (Parameters::fold_guard): where step 3 would move the winner from p to
+// q, the position it goes to instead, so that no more of its triangles fold back against its fan.
+// With a_i = v_i - p for the clockwise ring v_0 .. v_k-1, triangle i (w, v_i+1, v_i) has the
+// outward normal n_i = a_i+1 x a_i, and N = sum of n_i is the vector area of the ring polygon:
+// the same wherever w is. Triangle i is folded when f_i = n_i . N <= 0 (w's projection along N
+// lies outside the ring polygon's kernel, on the far side of edge i). f_i is linear in w's
+// position: at p + d it is f_i + e_i . (N x d), with e_i = v_i+1 - v_i.
+//  - A move that leaves more triangles folded than were folded at p is not made: p is kept.
+//  - A winner found folded goes instead to the centroid of its ring moved along its tangent
+//    plane (eq. 3-5 with a weight of 1), when that leaves fewer triangles folded.
+// Why: on the coarse early mesh the winners move by a sizeable part of an edge, and a move past
+// a neighbour's edge folds the fan; the folds the paper's steps then leave in place grow with the
+// mesh into inside-out parts (the horse, 1,000 vertices, seeds 1-40: 38 seeds with inward-facing
+// triangles, a third of them with half the horse inside out; with the guard: 4). O(k), on the
+// ring positions step 4 reads next.
+Vec3 NeuralMesh::guard_fold(const Vec3& p, const Vec3& q, const std::uint32_t* ring, std::uint32_t k) {
+    using namespace float4;  // F4, load, yzx, cross, cross_zxy, dot, dot2, to_vec3
+    const Vec3* pos = mesh_.positions().data();
+    const F4 p4 = load(p);
+    // N, its cross products summed with their lanes rotated (cross_zxy, as in step 4). The a_i
+    // are read again below (from the cache) rather than kept.
+    const F4 last = load(pos[ring[k - 1]]) - p4;
+    F4 rotated = F4{}, prev = last, rprev = yzx(last);
+    for (std::uint32_t i = 0; i < k; ++i) {
+        const F4 a = load(pos[ring[i]]) - p4, ra = yzx(a);
+        rotated = rotated + cross_zxy(a, ra, prev, rprev);  // n_i-1 = a_i x a_i-1
+        prev = a;
+        rprev = ra;
+    }
+    const F4 normal = yzx(rotated), rnormal = yzx(normal);
+    // f_i-1 = (a_i x a_i-1) . N = a_i . (a_i-1 x N), and the change at q = p + d is
+    // e_i-1 . (N x d) = a_i . m - a_i-1 . m, m = N x d: both are dot products with a_i (dot2).
+    // `count` gives the triangles folded at p (unless d is 0) and at p + d.
+    const auto count = [&](const F4& d, std::uint32_t& folded_p, std::uint32_t& folded_d) {
+        const F4 m = cross(normal, d);
+        F4 c_prev = yzx(cross_zxy(last, yzx(last), normal, rnormal));  // a_k-1 x N
+        float g_prev = dot(last, m);
+        folded_p = folded_d = 0;
+        for (std::uint32_t i = 0; i < k; ++i) {
+            const F4 a = load(pos[ring[i]]) - p4, ra = yzx(a);
+            float f, g;
+            dot2(c_prev, m, a, f, g);
+            folded_p += f <= 0.0f;
+            folded_d += f + (g - g_prev) <= 0.0f;
+            c_prev = yzx(cross_zxy(a, ra, normal, rnormal));
+            g_prev = g;
+        }
+    };
+    std::uint32_t folded_p, folded_q;
+    count(load(q) - p4, folded_p, folded_q);
+    Vec3 to = q;
+    if (folded_q > folded_p) {
+        to = p;
+        ++stats_.folds_refused;
+    }
+    if (folded_p > 0) {
+        // A folded winner: the centroid of its ring, moved along N onto w's tangent plane.
+        F4 sum = F4{};
+        for (std::uint32_t i = 0; i < k; ++i) sum = sum + (load(pos[ring[i]]) - p4);
+        const F4 laplacian = sum * (1.0f / float(k));
+        const float nn = dot(normal, normal);
+        const F4 d = nn > 0.0f ? laplacian - normal * (dot(laplacian, normal) / nn) : laplacian;
+        std::uint32_t unused, folded_c;
+        count(d, unused, folded_c);
+        if (folded_c < std::min(folded_p, folded_q)) {
+            to = to_vec3(p4 + d);
+            ++stats_.folds_undone;
+        }
+    }
+    return to;
 }
 
 // v's neighbours, clockwise: from the ring cache, or walked on the mesh into `scratch` when v has
@@ -179,7 +254,7 @@ void NeuralMesh::smooth_neighbourhood(const std::uint32_t* ring, std::uint32_t k
 // Steps 3-6 for the winner w of sample x. `ring` holds w's k neighbours (ring_of), whose
 // neighbourhood is already being fetched when `prefetched`.
 void NeuralMesh::update(Vertex w, const Vec3& x, const std::uint32_t* ring, std::uint32_t k, bool prefetched) {
-    move_winner(w, x);                         // step 3
+    move_winner(w, x, ring, k);                // step 3
     smooth_neighbourhood(ring, k, prefetched);  // step 4
     activity_.signal(w.idx);                   // step 5, eq. (6): tau_w += 1
     activity_.decay();                         // step 6, eq. (7): tau_v *= alpha for all v

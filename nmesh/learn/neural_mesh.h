@@ -88,7 +88,8 @@ public:
 
 private:
     Vec3 next_sample();
-    void move_winner(Vertex w, const Vec3& x);
+    void move_winner(Vertex w, const Vec3& x, const std::uint32_t* ring, std::uint32_t k);
+    Vec3 guard_fold(const Vec3& p, const Vec3& q, const std::uint32_t* ring, std::uint32_t k);
     void prefetch_neighbourhood(const std::uint32_t* ring, std::uint32_t k) const;
     void smooth_neighbourhood(const std::uint32_t* ring, std::uint32_t k, bool prefetched);
     void update(Vertex w, const Vec3& x, const std::uint32_t* ring, std::uint32_t k, bool prefetched);

@@ -9,6 +9,9 @@
 #include "nmesh/spatial/cloud_sample.h"
 #include "nmesh/error.h"
 #include "nmesh/finish/finish.h"
+#include "nmesh/geometry/triangle_bvh.h"
+#include "nmesh/geometry/triangle_intersection.h"
+#include "nmesh/metrics/orientation.h"
 #include "nmesh/learn/neural_mesh.h"
 
 namespace nmesh {
@@ -105,6 +108,7 @@ public:
         progress_.setup_seconds = elapsed();
     }
     double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+    double setup_seconds() const { return progress_.setup_seconds; }
     // After each iteration: false once the caller has cancelled.
     bool keep_going(bool settling) {
         constexpr std::uint64_t kReportMask = (1u << 16) - 1;  // a callback every 65,536 iterations
@@ -119,6 +123,17 @@ public:
         progress_.settling = settling;
         return callbacks_.progress(progress_);
     }
+    // The finishing stage's progress, at most every 0.1 s and at its end.
+    void report_finishing(double fraction) {
+        if (!callbacks_.progress) return;
+        const double now = elapsed();
+        if (fraction < 1.0 && now - last_finish_report_ < 0.1) return;
+        last_finish_report_ = now;
+        progress_.seconds = now;
+        progress_.finishing = true;
+        progress_.finish_fraction = fraction;
+        callbacks_.progress(progress_);
+    }
     bool cancelled() const { return cancelled_; }
 
 private:
@@ -127,6 +142,7 @@ private:
     Clock::time_point start_;
     Progress progress_;
     bool cancelled_ = false;
+    double last_finish_report_ = -1.0;
 };
 
 // Steps 1-9 until the target size (or a cancellation), with the snapshots on the way.
@@ -190,8 +206,11 @@ void settle(NeuralMesh& engine, const Parameters& params, Reporter& reporter) {
 // Parameters::index_points_per_vertex, normalised), or a new index when the engine has none
 // (it builds one only for the edge swap). Returns false, leaving `mesh` alone, should the stage
 // ever fail to keep the vertex count.
+// Choice: the stage may take at most as long as the learning did (`seconds_limit`), so that a
+// mesh whose defects the repair cannot remove costs no more than twice the learning.
 bool finish_stage(const Mesh& learnt, std::unique_ptr<PointGrid> cloud_index, PointSpan cloud,
-                  const Normalization& norm, const Parameters& params, Statistics& stats, Mesh& mesh) {
+                  const Normalization& norm, const Parameters& params, double seconds_limit, Reporter& reporter,
+                  Statistics& stats, Mesh& mesh) {
     if (!cloud_index) {
         cloud_index = index_cloud(cloud, norm.transform, norm.bounds, params);
         record_index(*cloud_index, stats);
@@ -200,8 +219,18 @@ bool finish_stage(const Mesh& learnt, std::unique_ptr<PointGrid> cloud_index, Po
     FinishOptions options;
     options.rounds = int(params.finish_rounds);
     options.fit_rounds = int(params.fit_rounds);
-    finish_mesh(mesh, cloud_index->indexed_points(), options, cloud_index.get());
+    options.seconds_limit = seconds_limit;
+    finish_mesh(mesh, cloud_index->indexed_points(), options, cloud_index.get(),
+                [&](double fraction) { reporter.report_finishing(fraction); });
     return mesh.n_vertices() == learnt.n_vertices();
+}
+
+// Every closed output faces outward (its triangles reversed when the learning turned the whole
+// surface inside out), and its validity is measured: crossing pairs and inward faces.
+void check_output(Result& result) {
+    result.stats.reoriented = metrics_detail::orient_outward(result.mesh);
+    result.stats.crossing_pairs = count_self_intersections(result.mesh);
+    result.stats.inward_faces = metrics_detail::inward_faces(result.mesh, TriangleBvh(result.mesh));
 }
 
 }  // namespace
@@ -210,8 +239,11 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
     params.validate();
     const auto start = Clock::now();
     const Normalization norm(require_reconstructible(cloud));
+    // The fold guard is off for a flat cloud: its closed mesh must fold flat, two coinciding sheets.
+    Parameters learning = params;
+    learning.fold_guard = params.fold_guard && !is_flat(cloud);
     // On the heap, so that it can be destroyed, and its memory freed, as soon as the learning ends.
-    auto engine = std::make_unique<NeuralMesh>(cloud, norm.bounds, params, norm.transform);
+    auto engine = std::make_unique<NeuralMesh>(cloud, norm.bounds, learning, norm.transform);
     engine->set_profiling(callbacks.profile);
     Reporter reporter(callbacks, *engine, params.target_vertices, start);
 
@@ -233,11 +265,14 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
 
     Mesh finished;
     result.stats.finished =
-        finish && finish_stage(learnt, std::move(cloud_index), cloud, norm, params, result.stats, finished);
+        finish && finish_stage(learnt, std::move(cloud_index), cloud, norm, params,
+                               std::max(0.05, learning_seconds - reporter.setup_seconds()), reporter, result.stats,
+                               finished);
     if (result.stats.finished) learnt = Mesh();  // freed before the output mesh is built
     result.mesh = norm.to_input(result.stats.finished ? finished.to_indexed() : learnt.to_indexed());
     result.stats.seconds = learning_seconds;
     result.stats.seconds_finish = finish ? reporter.elapsed() - learning_seconds : 0.0;
+    check_output(result);
     return result;
 }
 

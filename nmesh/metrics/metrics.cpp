@@ -11,7 +11,6 @@
 #include <locale>
 #include <numeric>
 #include <ostream>
-#include <random>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -21,11 +20,16 @@
 #include "nmesh/util/math_constants.h"
 #include "nmesh/spatial/point_grid.h"
 #include "nmesh/geometry/triangle_bvh.h"
+#include "nmesh/geometry/triangle_intersection.h"
+#include "nmesh/metrics/orientation.h"
 #include "nmesh/metrics/topology.h"
+#include "nmesh/util/random.h"
 
 namespace nmesh {
 
 using metrics_detail::analyze_topology;
+using metrics_detail::inward_faces;
+using metrics_detail::signed_volume;
 using metrics_detail::is_degenerate;
 
 namespace {
@@ -40,89 +44,10 @@ constexpr double kSmallAngleDeg = 10.0;
 Vector3d to_eigen(const Vec3& v) { return {double(v.x), double(v.y), double(v.z)}; }
 
 
-// ---- geometric predicates -----------------------------------------------------------------------
-
-// Six times the signed volume of the tetrahedron abcd; its sign tells on which side of the plane
-// of abc the point d lies (0: on it).
-double orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-    const Vector3d ad = to_eigen(a) - to_eigen(d);
-    const Vector3d bd = to_eigen(b) - to_eigen(d);
-    const Vector3d cd = to_eigen(c) - to_eigen(d);
-    return ad.dot(bd.cross(cd));
-}
-
-int sign(double x) { return (x > 0.0) - (x < 0.0); }
-
-// Twice the signed area of the 2D triangle abc.
-double orient2d(const double a[2], const double b[2], const double c[2]) {
-    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-}
-
-// Whether c, known to be collinear with the segment ab, lies on it.
-bool on_segment_2d(const double a[2], const double b[2], const double c[2]) {
-    return std::min(a[0], b[0]) <= c[0] && c[0] <= std::max(a[0], b[0]) &&
-           std::min(a[1], b[1]) <= c[1] && c[1] <= std::max(a[1], b[1]);
-}
-
-// Whether the closed 2D segments pq and rs meet.
-bool segments_meet_2d(const double p[2], const double q[2], const double r[2], const double s[2]) {
-    const int d1 = sign(orient2d(r, s, p)), d2 = sign(orient2d(r, s, q));
-    const int d3 = sign(orient2d(p, q, r)), d4 = sign(orient2d(p, q, s));
-    if (d1 * d2 < 0 && d3 * d4 < 0) return true;
-    return (d1 == 0 && on_segment_2d(r, s, p)) || (d2 == 0 && on_segment_2d(r, s, q)) ||
-           (d3 == 0 && on_segment_2d(p, q, r)) || (d4 == 0 && on_segment_2d(p, q, s));
-}
-
-// Whether p lies in the closed 2D triangle abc (of either orientation, non-degenerate).
-bool inside_triangle_2d(const double p[2], const double a[2], const double b[2], const double c[2]) {
-    const int s1 = sign(orient2d(a, b, p)), s2 = sign(orient2d(b, c, p)), s3 = sign(orient2d(c, a, p));
-    return (s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0);
-}
-
-// Two coplanar triangles: project them on the coordinate plane most parallel to theirs and test
-// edge crossings and containment.
-bool coplanar_triangles_intersect(const Vec3 t1[3], const Vec3 t2[3]) {
-    const Vector3d n = (to_eigen(t1[1]) - to_eigen(t1[0])).cross(to_eigen(t1[2]) - to_eigen(t1[0]));
-    int drop = 0;
-    n.cwiseAbs().maxCoeff(&drop);
-    const int u = (drop + 1) % 3, v = (drop + 2) % 3;
-    double p[3][2], q[3][2];
-    for (int i = 0; i < 3; ++i) {
-        p[i][0] = t1[i][u];
-        p[i][1] = t1[i][v];
-        q[i][0] = t2[i][u];
-        q[i][1] = t2[i][v];
-    }
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            if (segments_meet_2d(p[i], p[(i + 1) % 3], q[j], q[(j + 1) % 3])) return true;
-    return inside_triangle_2d(p[0], q[0], q[1], q[2]) || inside_triangle_2d(q[0], p[0], p[1], p[2]);
-}
-
-// Whether the segment pq, whose ends lie on opposite sides of the plane of abc (or on it, but not
-// both), meets the triangle abc: the line pq must pass on the same side of all three edges.
-bool segment_crosses_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
-    const int s1 = sign(orient3d(p, q, a, b)), s2 = sign(orient3d(p, q, b, c));
-    const int s3 = sign(orient3d(p, q, c, a));
-    return (s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0);
-}
-
-// Whether the triangle `t` crosses the plane of `other` through one of its edges; `side[i]` is the
-// side of the plane of `other` on which t[i] lies.
-bool edges_cross_triangle(const Vec3 t[3], const int side[3], const Vec3 other[3]) {
-    for (int i = 0; i < 3; ++i) {
-        const int j = (i + 1) % 3;
-        if (side[i] * side[j] > 0 || (side[i] == 0 && side[j] == 0)) continue;
-        if (segment_crosses_triangle(t[i], t[j], other[0], other[1], other[2])) return true;
-    }
-    return false;
-}
-
 // ---- sampling -----------------------------------------------------------------------------------
 
 // A double uniform in [0, 1) from the top 53 bits of a 64-bit draw (the same on every platform,
 // unlike std::uniform_real_distribution).
-double unit_uniform(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53; }
 
 void check_inputs(PointSpan points, const IndexedMesh& mesh) {
     if (points.empty()) throw InputError("metrics: the point cloud is empty");
@@ -232,22 +157,7 @@ std::vector<Vec3> centroids(const IndexedMesh& mesh) {
 
 bool triangles_intersect(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& e,
                          const Vec3& f) {
-    const Vec3 t1[3] = {a, b, c}, t2[3] = {d, e, f};
-    // Sides of each triangle's vertices with respect to the other's plane.
-    int side2[3], side1[3];
-    for (int i = 0; i < 3; ++i) {
-        side2[i] = sign(orient3d(a, b, c, t2[i]));
-        side1[i] = sign(orient3d(d, e, f, t1[i]));
-    }
-    const auto one_side = [](const int s[3]) {
-        return (s[0] > 0 && s[1] > 0 && s[2] > 0) || (s[0] < 0 && s[1] < 0 && s[2] < 0);
-    };
-    if (one_side(side2) || one_side(side1)) return false;
-    const auto all_zero = [](const int s[3]) { return s[0] == 0 && s[1] == 0 && s[2] == 0; };
-    if (all_zero(side2) || all_zero(side1)) return coplanar_triangles_intersect(t1, t2);
-    // Not coplanar: the intersection, if any, is a segment whose ends lie on edges of the two
-    // triangles, so some edge of one meets the other.
-    return edges_cross_triangle(t2, side2, t1) || edges_cross_triangle(t1, side1, t2);
+    return triangles_intersect_exact(a, b, c, d, e, f);
 }
 
 double min_angle_deg(const Vec3& a_in, const Vec3& b_in, const Vec3& c_in) {
@@ -330,8 +240,8 @@ QualityReport evaluate(PointSpan points, const IndexedMesh& mesh, const EvalOpti
             cumulative[f] = total;
         }
         const PointGrid cloud(points);
-        std::mt19937_64 rng(options.seed);
-        const double offset = unit_uniform(rng);
+        Random rng(options.seed);
+        const double offset = rng.uniform();
         double sum = 0.0, worst = 0.0;
         std::size_t f = 0;
         for (std::size_t i = 0; i < count; ++i) {
@@ -341,7 +251,7 @@ QualityReport evaluate(PointSpan points, const IndexedMesh& mesh, const EvalOpti
             } else {  // every triangle has zero area: take them in turn
                 f = i % tris.size();
             }
-            const double root = std::sqrt(unit_uniform(rng)), w = unit_uniform(rng);
+            const double root = std::sqrt(rng.uniform()), w = rng.uniform();
             const Corners& t = tris[f];
             const Vector3d q = (1.0 - root) * to_eigen(t[0]) + root * (1.0 - w) * to_eigen(t[1]) +
                                root * w * to_eigen(t[2]);
@@ -377,14 +287,10 @@ QualityReport evaluate(PointSpan points, const IndexedMesh& mesh, const EvalOpti
         degenerate[f] = is_degenerate(mesh, mesh.triangles[f]);
         r.degenerate_triangles += std::size_t(degenerate[f]);
     }
-    bvh.for_each_overlapping_pair([&](std::uint32_t s, std::uint32_t t) {
-        const auto &u = mesh.triangles[s], &v = mesh.triangles[t];
-        if (degenerate[s] || degenerate[t]) return;
-        for (std::uint32_t i : u)
-            if (i == v[0] || i == v[1] || i == v[2]) return;  // adjacent
-        const auto& x = mesh.positions;
-        if (triangles_intersect(x[u[0]], x[u[1]], x[u[2]], x[v[0]], x[v[1]], x[v[2]])) ++r.self_intersections;
-    });
+    r.self_intersections = count_self_intersections(mesh);
+    // Orientation: meaningful for a closed mesh only.
+    r.signed_volume = signed_volume(mesh);
+    r.inward_faces = r.closed ? inward_faces(mesh, bvh) : 0;
 
     // Triangle quality.
     double angle_sum = 0.0, angle_min = kInf;

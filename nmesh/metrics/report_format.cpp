@@ -50,6 +50,8 @@ void for_each_field(const QualityReport& r, F&& f) {
     f("isolated_vertices", integer((long long)r.isolated_vertices));
     f("degenerate_triangles", integer((long long)r.degenerate_triangles));
     f("self_intersections", integer((long long)r.self_intersections));
+    f("signed_volume", number(r.signed_volume));
+    f("inward_faces", integer((long long)r.inward_faces));
     f("min_angle_min_deg", number(r.min_angle_min_deg));
     f("min_angle_mean_deg", number(r.min_angle_mean_deg));
     f("share_under_10deg", number(r.share_under_10deg));

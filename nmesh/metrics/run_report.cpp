@@ -45,6 +45,7 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << "  \"parameters\": {\"target_vertices\": " << p.target_vertices << ", \"alpha_w\": " << p.alpha_w
       << ", \"alpha_n\": " << p.alpha_n << ", \"alpha\": " << p.alpha << ", \"cvs\": " << p.cvs
       << ", \"cec\": " << p.cec << ", \"edge_swap\": " << (p.edge_swap ? "true" : "false")
+      << ", \"fold_guard\": " << (p.fold_guard ? "true" : "false")
       << ", \"settle\": " << p.settle << ", \"finish\": " << (p.finish ? "true" : "false")
       << ", \"finish_rounds\": " << p.finish_rounds << ", \"fit_rounds\": " << p.fit_rounds
       << ", \"index_points_per_vertex\": " << p.index_points_per_vertex << "},\n"
@@ -59,9 +60,14 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << "  \"swaps_kept\": " << s.swaps_kept << ",\n"
       << "  \"swaps_undone\": " << s.swaps_undone << ",\n"
       << "  \"swaps_illegal\": " << s.swaps_illegal << ",\n"
+      << "  \"folds_refused\": " << s.folds_refused << ",\n"
+      << "  \"folds_undone\": " << s.folds_undone << ",\n"
       << "  \"indexed_points\": " << s.indexed_points << ",\n"
       << "  \"seconds\": " << s.seconds << ",\n"
       << "  \"seconds_finish\": " << s.seconds_finish << ",\n"
+      << "  \"reoriented\": " << (s.reoriented ? "true" : "false") << ",\n"
+      << "  \"crossing_pairs\": " << s.crossing_pairs << ",\n"
+      << "  \"inward_faces\": " << s.inward_faces << ",\n"
       << "  \"cancelled\": " << (r.cancelled ? "true" : "false") << ",\n"
       << "  \"metrics\": " << metrics.str() << "\n"
       << "}\n";

@@ -1,0 +1,27 @@
+// nmesh/metrics/orientation.h — which way a closed mesh faces: its signed volume, and the faces
+// that point into the solid it bounds instead of out of it.
+#pragma once
+
+#include <cstddef>
+
+#include "nmesh/geometry/triangle_bvh.h"
+#include "nmesh/indexed_mesh.h"
+
+namespace nmesh::metrics_detail {
+
+// The signed volume enclosed by the triangles (positive when a closed mesh is oriented outward,
+// counter-clockwise seen from outside), in double.
+double signed_volume(const IndexedMesh& mesh);
+
+// The number of non-degenerate faces that point inward: the point just off the face's centroid
+// along its normal (a thousandth of its longest edge away) lies inside the surface, its winding
+// number nonzero. The winding number is counted along a ray in +x, each crossed triangle adding
+// the sign of its normal's x component, through `bvh` (a hierarchy over `mesh`): O(log F) per
+// face. Meaningful for closed meshes; a face on a fold or in a tangle may count either way.
+std::size_t inward_faces(const IndexedMesh& mesh, const TriangleBvh& bvh);
+
+// Reverses every triangle when the signed volume is negative, so that a closed mesh faces
+// outward; returns whether it did.
+bool orient_outward(IndexedMesh& mesh);
+
+}  // namespace nmesh::metrics_detail
