@@ -71,7 +71,14 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
         const double used = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         return std::max(1e-3, options.seconds_limit - used);  // > 0: a limit, however small
     };
-    for (int r = 0; r < options.rounds; ++r) {
+    // The regularisation may use half of a time limit, the repair the rest: half of it for the
+    // repair of the regularised mesh, the remainder for the fallback on the learnt one.
+    const auto regularisation_over = [&] {
+        return options.seconds_limit > 0.0 &&
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
+                   0.5 * options.seconds_limit;
+    };
+    for (int r = 0; r < options.rounds && !regularisation_over(); ++r) {
         report.flips += flip_to_delaunay(mesh, options.flip_max_dihedral_deg);
         relax_tangentially(mesh, pull);
         ++report.relax_passes;
@@ -90,22 +97,27 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
             last_rounds = rounds;
         };
         RepairResult r = repair_folds_and_intersections(mesh, options.repair_max_rounds, options.fold_dihedral_deg,
-                                                        pull, seconds_left(), on_round);
+                                                        pull, 0.5 * seconds_left(), on_round);
         report.intersecting_pairs_before = r.intersecting_pairs_before;
         report.folded_edges_before = r.folded_edges_before;
         report.repair_rounds = r.rounds;
         report.repair_reverted = r.reverted;
-        // Do no harm: when the repair did not succeed, the regularised mesh is kept only if it
-        // has no more intersecting pairs than the learnt one. Otherwise the repair is tried on the
-        // learnt mesh itself, and if that fails too the learnt mesh is returned as it was.
-        if (r.reverted && (options.rounds > 0 || options.fit_rounds > 0) &&
-            r.intersecting_pairs > find_self_intersections(learnt).size()) {
-            mesh = learnt;
+        // When the repair leaves defects, it is tried on the learnt mesh as well, and the mesh
+        // with fewer intersecting pairs is kept (the regularised one on a tie): the stage never
+        // returns more of them than the learnt mesh had.
+        const bool clean = r.intersecting_pairs == 0 && r.folded_edges == 0;
+        if (!clean && (options.rounds > 0 || options.fit_rounds > 0)) {
+            Mesh alternative = learnt;
             last_rounds = 0;
-            r = repair_folds_and_intersections(mesh, options.repair_max_rounds, options.fold_dihedral_deg, pull,
-                                               seconds_left(), on_round);
-            report.fallback = r.reverted ? FinishReport::Fallback::learnt_mesh : FinishReport::Fallback::repaired_learnt_mesh;
-            report.repair_rounds += r.rounds;
+            const RepairResult ra = repair_folds_and_intersections(alternative, options.repair_max_rounds,
+                                                                   options.fold_dihedral_deg, pull, seconds_left(),
+                                                                   on_round);
+            report.repair_rounds += ra.rounds;
+            if (ra.intersecting_pairs < r.intersecting_pairs) {
+                mesh = std::move(alternative);
+                r = ra;
+                report.fallback = r.reverted ? FinishReport::Fallback::learnt_mesh : FinishReport::Fallback::repaired_learnt_mesh;
+            }
         }
         report.intersecting_pairs_after = r.intersecting_pairs;
         report.folded_edges_after = r.folded_edges;

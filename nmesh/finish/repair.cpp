@@ -92,7 +92,7 @@ RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fo
     };
     std::vector<Vertex> region, ring_start, seeds;
     std::vector<Vec3> next;
-    for (int round = 0; round < max_rounds && !tracker.clean(); ++round) {
+    for (int round = 0; round < max_rounds && !tracker.clean() && !out_of_time(); ++round) {
         ++result.rounds;
         const std::vector<Face> defective = tracker.defective_faces();
         seeds.clear();
@@ -183,7 +183,6 @@ RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fo
         // 5. Test again.
         tracker.check();
         if (on_round) on_round(result.rounds);
-        if (out_of_time()) break;
     }
     const bool counted = mesh.n_vertices() == target;
     bool ok = tracker.clean() && counted;

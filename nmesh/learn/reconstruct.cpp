@@ -206,8 +206,10 @@ void settle(NeuralMesh& engine, const Parameters& params, Reporter& reporter) {
 // Parameters::index_points_per_vertex, normalised), or a new index when the engine has none
 // (it builds one only for the edge swap). Returns false, leaving `mesh` alone, should the stage
 // ever fail to keep the vertex count.
-// Choice: the stage may take at most as long as the learning did (`seconds_limit`), so that a
-// mesh whose defects the repair cannot remove costs no more than twice the learning.
+// Choice: the stage may take about as long as the learning did, or kFinishMinSeconds for a small
+// mesh (`seconds_limit`: its rounds stop there; setting up and the round under way finish), so
+// that a mesh whose defects the repair cannot remove costs no more than about twice the learning.
+constexpr double kFinishMinSeconds = 0.25;
 bool finish_stage(const Mesh& learnt, std::unique_ptr<PointGrid> cloud_index, PointSpan cloud,
                   const Normalization& norm, const Parameters& params, double seconds_limit, Reporter& reporter,
                   Statistics& stats, Mesh& mesh) {
@@ -266,7 +268,7 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
     Mesh finished;
     result.stats.finished =
         finish && finish_stage(learnt, std::move(cloud_index), cloud, norm, params,
-                               std::max(0.05, learning_seconds - reporter.setup_seconds()), reporter, result.stats,
+                               std::max(kFinishMinSeconds, learning_seconds), reporter, result.stats,
                                finished);
     if (result.stats.finished) learnt = Mesh();  // freed before the output mesh is built
     result.mesh = norm.to_input(result.stats.finished ? finished.to_indexed() : learnt.to_indexed());

@@ -113,8 +113,9 @@ std::pair<py::array, py::array> mesh_arrays(nmesh::IndexedMesh&& mesh) {
 
 // The progress callback given to reconstruct(), which runs with the GIL released: it takes the
 // GIL, lets Python run its signal handlers (Ctrl-C raises KeyboardInterrupt there) and calls the
-// user's callable as progress(vertices, target, seconds). Any Python exception, from either,
-// cancels the learning and is kept, to be raised once reconstruct() has returned.
+// user's callable as progress(vertices, target, seconds) during the learning. Any Python
+// exception, from either, cancels the learning and is kept, to be raised once reconstruct() has
+// returned.
 class ProgressBridge {
 public:
     explicit ProgressBridge(py::object callback) : callback_(std::move(callback)) {}
@@ -124,7 +125,9 @@ public:
         if (error_) return false;  // cancelled already; the library may report once more
         try {
             if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-            if (callback_.is_none()) return true;
+            // The finishing stage's reports only give Ctrl-C its chance: the callable hears of the
+            // learning (the stage is bounded by the learning's time and cannot be cancelled).
+            if (callback_.is_none() || progress.finishing) return true;
             const py::object answer = callback_(progress.vertices, progress.target_vertices, progress.seconds);
             if (answer.is_none()) return true;  // a callback without a return statement continues
             const int keep_going = PyObject_IsTrue(answer.ptr());

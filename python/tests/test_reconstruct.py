@@ -101,7 +101,7 @@ def test_seed_and_parameters_reach_the_library(bunny: np.ndarray, bunny_mesh: nm
                                seed=2**64 - 1, index_points_per_vertex=0, metrics=False).stats
     assert params["seed"] == 2**64 - 1
     assert params["parameters"] == {"target_vertices": 300, "alpha_w": 0.05, "alpha_n": 0.02, "alpha": 0.9,
-                                    "cvs": 80, "cec": 15, "edge_swap": True, "settle": 0, "finish": False,
+                                    "cvs": 80, "cec": 15, "edge_swap": True, "fold_guard": True, "settle": 0, "finish": False,
                                     "finish_rounds": 10, "fit_rounds": 0, "index_points_per_vertex": 0}
     assert params["seconds_finish"] == 0
 
