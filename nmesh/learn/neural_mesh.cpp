@@ -101,7 +101,7 @@ void NeuralMesh::move_winner(Vertex w, const Vec3& x, const std::uint32_t* ring,
     const float aw = float(params_.alpha_w);
     const Vec3 p = mesh_.position(w);
     const Vec3 q = p * (1.0f - aw) + x * aw;
-    set_position(w, params_.fold_guard ? guard_fold(p, q, ring, k) : q);
+    set_position(w, params_.fold_guard && mesh_.n_vertices() < kFoldGuardBelow ? guard_fold(p, q, ring, k) : q);
 }
 
 // Choice beyond the paper (Parameters::fold_guard): where step 3 would move the winner from p to
@@ -115,10 +115,9 @@ void NeuralMesh::move_winner(Vertex w, const Vec3& x, const std::uint32_t* ring,
 //  - A winner found folded goes instead to the centroid of its ring moved along its tangent
 //    plane (eq. 3-5 with a weight of 1), when that leaves fewer triangles folded.
 // Why: on the coarse early mesh the winners move by a sizeable part of an edge, and a move past
-// a neighbour's edge folds the fan; the folds the paper's steps then leave in place grow with the
-// mesh into inside-out parts (the horse, 1,000 vertices, seeds 1-40: 38 seeds with inward-facing
-// triangles, a third of them with half the horse inside out; with the guard: 4). O(k), on the
-// ring positions step 4 reads next.
+// a neighbour's edge folds the fan; nothing in steps 4-8 unfolds it, and the folded part grows
+// with the mesh into an inside-out part (docs/algorithm.md has the measurements). O(k), on the
+// ring positions step 4 reads next; only while the mesh is coarse (kFoldGuardBelow).
 Vec3 NeuralMesh::guard_fold(const Vec3& p, const Vec3& q, const std::uint32_t* ring, std::uint32_t k) {
     using namespace float4;  // F4, load, yzx, cross, cross_zxy, dot, dot2, to_vec3
     const Vec3* pos = mesh_.positions().data();

@@ -32,6 +32,11 @@ public:
     // (Parameters::validate refuses more).
     static constexpr std::uint32_t kReserveSlack = 16;
     static constexpr std::uint32_t kMaxTargetVertices = Mesh::kMaxVertices - kReserveSlack;
+    // The fold guard of step 3 (Parameters::fold_guard) runs while the mesh has fewer vertices
+    // than this: the folds that grow into inside-out parts start while the mesh is coarse against
+    // the shape, and the guard costs a sixth more instructions per iteration. Choice: 4096, which
+    // left the same runs defective as the guard at every size (docs/algorithm.md).
+    static constexpr std::uint32_t kFoldGuardBelow = 4096;
 
     // The engine learns `transform(p)` for the points p of `points`, which must outlive it.
     // The transformed points should be normalised (reconstruct() centres them and scales them
@@ -118,6 +123,7 @@ private:
     // looks one sample ahead (look_ahead; docs/performance.md has the measurements). The results
     // are the same bit for bit either way.
     std::uint32_t lookahead_from_ = 65536;
+
     // The look-ahead winner search of large meshes (look_ahead): the next sample's nearest
     // vertex found before this iteration moves anything, its squared distance then, and the
     // vertices this iteration moved (the winner and its ring).
