@@ -17,8 +17,8 @@ struct Statistics {
     std::uint64_t swaps_kept = 0;        //   kept: the new edge deviates less
     std::uint64_t swaps_undone = 0;      //   undone: it did not
     std::uint64_t swaps_illegal = 0;     //   the worst edge could not be flipped
-    std::uint64_t folds_refused = 0;     // step 3 moves not made: they would fold the winner's fan
-    std::uint64_t folds_undone = 0;      // folded winners moved to their ring's centroid instead
+    std::uint64_t moves_shortened = 0;   // step 3 moves shortened: they would fold the winner's fan
+    std::uint64_t folds_undone = 0;      // folded winners moved towards their ring's centroid instead
     std::uint64_t indexed_points = 0;    // points in the nearest-point index (0 when none was built)
     std::uint64_t index_bytes = 0;       //   its memory (PointGrid::memory_bytes)
     double seconds = 0.0;                // learning time, wall clock (normalisation included)

@@ -79,11 +79,16 @@ if(NOT sampled MATCHES "\"index_points_per_vertex\": 2}.*\"indexed_points\": 200
   message(SEND_ERROR "stats.json: --index-points 2 did not index 2000 points")
   math(EXPR failures "${failures} + 1")
 endif()
-# --fit-rounds: recorded in the parameters, and DM(X,T) lower than without the fit (the run above).
+# --fit-rounds: recorded in the parameters, and DM(X,T) lower than without the fit. Seed 2: with
+# seed 1 the stage's repair of the regularised (and fitted) mesh is undone, and the stage falls
+# back on the learnt mesh, repaired, which the fit never touched.
+expect(fit_reference 0 "wrote .*unfitted.ply: 1000 vertices"
+  ${NMESH} reconstruct ${DATA} -o ${WORK}/unfitted.ply --vertices 1000 --seed 2 --stats ${WORK}/unfitted.json)
+file(READ ${WORK}/unfitted.json unfitted)
 expect(fit_rounds 0 "wrote .*fitted.ply: 1000 vertices"
-  ${NMESH} reconstruct ${DATA} -o ${WORK}/fitted.ply --vertices 1000 --fit-rounds 2 --stats ${WORK}/fitted.json)
+  ${NMESH} reconstruct ${DATA} -o ${WORK}/fitted.ply --vertices 1000 --seed 2 --fit-rounds 2 --stats ${WORK}/fitted.json)
 file(READ ${WORK}/fitted.json fitted)
-string(REGEX MATCH "\"dm_x_t\": ([0-9.e+-]+)" unused "${stats}")
+string(REGEX MATCH "\"dm_x_t\": ([0-9.e+-]+)" unused "${unfitted}")
 set(dm_default "${CMAKE_MATCH_1}")
 string(REGEX MATCH "\"dm_x_t\": ([0-9.e+-]+)" unused "${fitted}")
 set(dm_fitted "${CMAKE_MATCH_1}")
@@ -108,6 +113,17 @@ file(SHA256 ${WORK}/finished.ply finished_sha)
 file(SHA256 ${WORK}/unfinished.ply unfinished_sha)
 if(finished_sha STREQUAL unfinished_sha)
   message(SEND_ERROR "--no-finish wrote the same mesh as the default")
+  math(EXPR failures "${failures} + 1")
+endif()
+# --no-fold-guard: the paper's step 3, recorded in the statistics, and another learnt mesh.
+expect(no_fold_guard 0 "wrote .*unguarded.ply: 1000 vertices"
+  ${NMESH} reconstruct ${DATA} -o ${WORK}/unguarded.ply --vertices 1000 --no-finish --no-fold-guard
+  --stats ${WORK}/unguarded.json)
+file(READ ${WORK}/unguarded.json unguarded)
+file(SHA256 ${WORK}/unguarded.ply unguarded_sha)
+if(NOT unguarded MATCHES "\"fold_guard\": false.*\"moves_shortened\": 0,\n  \"folds_undone\": 0,"
+   OR unguarded_sha STREQUAL unfinished_sha)
+  message(SEND_ERROR "--no-fold-guard: not recorded, or the same mesh as with the guard")
   math(EXPR failures "${failures} + 1")
 endif()
 

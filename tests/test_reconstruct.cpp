@@ -74,6 +74,7 @@ TEST_CASE("steps 2-4 move the nearest vertex by eq. (2) and its ring by eq. (3)-
     Parameters p;
     p.target_vertices = 1000;
     p.alpha_n = 0.2;  // large steps, so that an error in the smoothing cannot hide in rounding
+    p.fold_guard = false;  // eq. (2) as the paper has it (the guard has its own tests below)
     // Rings from the ring cache, or (limit 4) walked on the half-edge mesh for most vertices.
     for (const std::uint32_t limit : {RingCache::kCapacity, 4u}) {
         CAPTURE(limit);
@@ -132,6 +133,60 @@ TEST_CASE("steps 2-4 move the nearest vertex by eq. (2) and its ring by eq. (3)-
         CHECK(checked_rings > 300 * 4);
         nmesh::test::require_engine_valid(engine);
     }
+}
+
+namespace {
+// The triangles of v's fan whose normal opposes the sum of the fan's normals (guard_fold's test),
+// in double: those with n . N below -margin |n| |N| (margin -1e-4 counts the near-folded too).
+std::uint32_t folded_triangles(const Mesh& m, Vertex v, double margin) {
+    struct D {
+        double x, y, z;
+    };
+    const Vec3 p = m.position(v);
+    auto normal = [&](Halfedge h) {
+        const Vec3 a = m.position(m.to(h)) - p, b = m.position(m.to(m.next(h))) - p;
+        return D{double(a.y) * b.z - double(a.z) * b.y, double(a.z) * b.x - double(a.x) * b.z,
+                 double(a.x) * b.y - double(a.y) * b.x};
+    };
+    D sum{0, 0, 0};
+    m.for_each_outgoing(v, [&](Halfedge h) {
+        const D n = normal(h);
+        sum = {sum.x + n.x, sum.y + n.y, sum.z + n.z};
+    });
+    const double ls = std::sqrt(sum.x * sum.x + sum.y * sum.y + sum.z * sum.z);
+    std::uint32_t folded = 0;
+    m.for_each_outgoing(v, [&](Halfedge h) {
+        const D n = normal(h);
+        const double ln = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+        folded += n.x * sum.x + n.y * sum.y + n.z * sum.z < -margin * ln * ls;
+    });
+    return folded;
+}
+}  // namespace
+
+TEST_CASE("the fold guard: step 3 never folds more of the winner's triangles, and unfolds some") {
+    // alpha_w 1 (the winner jumps onto the sample) folds fans often; alpha_n 0 leaves step 3
+    // alone to change the winner's fan.
+    const PointCloud cloud = sphere_cloud(5000, 1.0f, {0.5f, -1.0f, 2.0f}, 11);
+    Parameters p;
+    p.target_vertices = 1000;
+    p.alpha_w = 1.0;
+    p.alpha_n = 0.0;
+    NeuralMesh engine(cloud.points, bounding_box(cloud.points), p);
+    while (engine.mesh().n_vertices() < 500) engine.iterate();
+    const Mesh& m = engine.mesh();
+    const std::uint64_t shortened = engine.stats().moves_shortened;
+    for (int s = 0; s < 2000; ++s) {
+        const Vec3 x = cloud.points[std::size_t(s) * 7 % cloud.size()] + Vec3{0.01f, -0.02f, 0.015f};
+        const Vertex w(engine.grid().nearest(x));
+        const std::uint32_t before = folded_triangles(m, w, -1e-4);  // the near-folded too
+        engine.adapt_to(x);
+        INFO("sample " << s);
+        REQUIRE(folded_triangles(m, w, 1e-4) <= before);
+    }
+    CHECK(engine.stats().moves_shortened > shortened);
+    CHECK(engine.stats().folds_undone > 0);
+    nmesh::test::require_engine_valid(engine);
 }
 
 TEST_CASE("a transform applied on the fly learns what the transformed copy of the cloud learns") {

@@ -60,7 +60,7 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << "  \"swaps_kept\": " << s.swaps_kept << ",\n"
       << "  \"swaps_undone\": " << s.swaps_undone << ",\n"
       << "  \"swaps_illegal\": " << s.swaps_illegal << ",\n"
-      << "  \"folds_refused\": " << s.folds_refused << ",\n"
+      << "  \"moves_shortened\": " << s.moves_shortened << ",\n"
       << "  \"folds_undone\": " << s.folds_undone << ",\n"
       << "  \"indexed_points\": " << s.indexed_points << ",\n"
       << "  \"seconds\": " << s.seconds << ",\n"
