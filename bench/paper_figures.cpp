@@ -62,6 +62,7 @@ nmesh::IndexedMesh run(const nmesh::PointCloud& cloud, std::uint32_t n, double a
     p.alpha_n = an;
     p.edge_swap = swap;
     p.finish = false;  // figures 6-9 compare the paper's algorithms as published
+    p.fold_guard = false;
     return nmesh::reconstruct(cloud, p).mesh;
 }
 
