@@ -18,8 +18,8 @@
 
 namespace {
 
-using nmesh::bench::Summary;
 using nmesh::bench::summarize;
+using nmesh::bench::Summary;
 
 }  // namespace
 
@@ -56,19 +56,22 @@ int main(int argc, char** argv) {
         profiled.profile = true;
         const nmesh::Statistics p = nmesh::reconstruct(cloud, params, profiled).stats;
         const Summary t = summarize(seconds), it = summarize(rates), fin = summarize(finishing);
-        const double total = p.seconds_winner + p.seconds_update + p.seconds_split + p.seconds_collapse + p.seconds_swap;
+        const double total =
+            p.seconds_winner + p.seconds_update + p.seconds_split + p.seconds_collapse + p.seconds_swap;
         auto share = [&](double s) { return total > 0 ? 100.0 * s / total : 0.0; };
         std::printf("cloud %s: %zu points -> %u vertices, edge swap %s, %d runs\n", argv[1], cloud.size(),
                     params.target_vertices, params.edge_swap ? "on" : "off", runs);
         std::printf("time      median %.3f s  min %.3f s  max %.3f s  (learning, steps 1-9)\n", t.median, t.min, t.max);
-        std::printf("finishing median %.3f s  min %.3f s  max %.3f s  (the stage after learning, not in the time above)\n",
-                    fin.median, fin.min, fin.max);
+        std::printf(
+            "finishing median %.3f s  min %.3f s  max %.3f s  (the stage after learning, not in the time above)\n",
+            fin.median, fin.min, fin.max);
         std::printf("rate      median %.2f M it/s  min %.2f  max %.2f  (%llu iterations)\n", it.median / 1e6,
                     it.min / 1e6, it.max / 1e6, (unsigned long long)last.iterations);
-        std::printf("phases    winner search %.1f%%  move+smooth+counters %.1f%%  split %.1f%%  collapse %.1f%%  swap %.1f%%"
-                    "  (profiled run: %.3f s)\n",
-                    share(p.seconds_winner), share(p.seconds_update), share(p.seconds_split),
-                    share(p.seconds_collapse), share(p.seconds_swap), p.seconds);
+        std::printf(
+            "phases    winner search %.1f%%  move+smooth+counters %.1f%%  split %.1f%%  collapse %.1f%%  swap %.1f%%"
+            "  (profiled run: %.3f s)\n",
+            share(p.seconds_winner), share(p.seconds_update), share(p.seconds_split), share(p.seconds_collapse),
+            share(p.seconds_swap), p.seconds);
         if (!csv.empty()) {
             std::FILE* f = std::fopen(csv.c_str(), "a");
             if (!f) throw nmesh::IoError(csv + ": cannot open for appending");

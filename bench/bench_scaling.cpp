@@ -83,8 +83,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-using nmesh::bench::Summary;
 using nmesh::bench::summarize;
+using nmesh::bench::Summary;
 
 // ---- memory (Linux /proc) ----------------------------------------------------------------------
 
@@ -122,8 +122,7 @@ constexpr std::uint64_t kUpsampleSeed = 7;
 std::vector<std::uint32_t> nearest_neighbours(const std::vector<nmesh::Vec3>& pts) {
     const std::size_t n = pts.size();
     const nmesh::BoundingBox box = nmesh::bounding_box(pts);
-    const double e[3] = {double(box.max.x) - box.min.x, double(box.max.y) - box.min.y,
-                         double(box.max.z) - box.min.z};
+    const double e[3] = {double(box.max.x) - box.min.x, double(box.max.y) - box.min.y, double(box.max.z) - box.min.z};
     const double half_area = e[0] * e[1] + e[1] * e[2] + e[2] * e[0];
     double cell = half_area > 0 ? std::sqrt(2.0 * half_area / double(n)) : std::max({e[0], e[1], e[2], 1e-30});
     std::int64_t dims[3];
@@ -220,13 +219,13 @@ nmesh::PointCloud upsample(const nmesh::PointCloud& base, std::uint32_t k) {
 // ---- modes -------------------------------------------------------------------------------------
 
 struct Options {
-    std::string mode;                           // output, input, loading or pair
-    std::uint32_t vertices = 30000;             // target size (output and input)
-    std::uint64_t points = 0;                   // cloud size wanted: the base upsampled ~points/base times
-    int runs = 5;                               // timed runs per figure
+    std::string mode;                               // output, input, loading or pair
+    std::uint32_t vertices = 30000;                 // target size (output and input)
+    std::uint64_t points = 0;                       // cloud size wanted: the base upsampled ~points/base times
+    int runs = 5;                                   // timed runs per figure
     std::string cloud = "examples/data/bunny.ply";  // the base cloud
-    std::string csv;                            // a CSV line is appended here when set
-    bool profile = false;                       // one more run timing each phase (printed only)
+    std::string csv;                                // a CSV line is appended here when set
+    bool profile = false;                           // one more run timing each phase (printed only)
 };
 
 // printf into a std::string.
@@ -384,35 +383,36 @@ void run_reconstruction(const Options& o, const nmesh::PointCloud& cloud, std::u
     const double input_pp = input_bytes / P, setup_peak_pp = setup_peak_bytes / P;
     const double out_pv = double(output_bytes) / N;
 
-    std::printf("%s: %zu points (base x %u) -> %u vertices, %d runs, %llu iterations%s\n", o.mode.c_str(),
-                cloud.size(), k, o.vertices, o.runs, (unsigned long long)iterations,
-                " (finishing stage off: learning only)");
+    std::printf("%s: %zu points (base x %u) -> %u vertices, %d runs, %llu iterations%s\n", o.mode.c_str(), cloud.size(),
+                k, o.vertices, o.runs, (unsigned long long)iterations, " (finishing stage off: learning only)");
     std::printf("  time     median %.3f s  min %.3f  max %.3f  (setup %.3f s, loop %.3f s, whole call %.3f s)\n",
                 t.median, t.min, t.max, su.median, t.median - su.median, ca.median);
     std::printf("  rate     median %.3f M it/s  min %.3f  max %.3f\n", it.median / 1e6, it.min / 1e6, it.max / 1e6);
-    std::printf("  input    cloud in memory %.1f MB; the engine adds %.1f B/point (index alone %.1f), setup peak "
-                "%.1f B/point\n",
-                double(before.rss) / 1e6, input_pp, index_pp, setup_peak_pp);
+    std::printf(
+        "  input    cloud in memory %.1f MB; the engine adds %.1f B/point (index alone %.1f), setup peak "
+        "%.1f B/point\n",
+        double(before.rss) / 1e6, input_pp, index_pp, setup_peak_pp);
     std::printf("  mesh     peak %.1f MB: %.1f B/vertex (output mesh %.1f); (peak - before) / N %.1f B/vertex\n",
                 mesh_peak / 1e6, per_vertex, out_pv, raw_pv);
     if (o.profile) {
         nmesh::Callbacks profiled;
         profiled.profile = true;
         const nmesh::Statistics q = nmesh::reconstruct(cloud, params, profiled).stats;
-        const double total = q.seconds_winner + q.seconds_update + q.seconds_split + q.seconds_collapse + q.seconds_swap;
+        const double total =
+            q.seconds_winner + q.seconds_update + q.seconds_split + q.seconds_collapse + q.seconds_swap;
         auto share = [&](double x) { return total > 0 ? 100.0 * x / total : 0.0; };
-        std::printf("  phases   winner search %.1f%%  move+smooth+counters %.1f%%  split %.1f%%  collapse %.1f%%  swap "
-                    "%.1f%%  (profiled run: %.3f s; splits %llu, collapses %llu)\n",
-                    share(q.seconds_winner), share(q.seconds_update), share(q.seconds_split),
-                    share(q.seconds_collapse), share(q.seconds_swap), q.seconds, (unsigned long long)q.splits,
-                    (unsigned long long)q.collapses);
+        std::printf(
+            "  phases   winner search %.1f%%  move+smooth+counters %.1f%%  split %.1f%%  collapse %.1f%%  swap "
+            "%.1f%%  (profiled run: %.3f s; splits %llu, collapses %llu)\n",
+            share(q.seconds_winner), share(q.seconds_update), share(q.seconds_split), share(q.seconds_collapse),
+            share(q.seconds_swap), q.seconds, (unsigned long long)q.splits, (unsigned long long)q.collapses);
     }
     append_csv(o.csv, format("%s,%zu,%u,%u,%d,%llu,%.4f,%.4f,%.4f,%.0f,%.0f,%.0f,%.4f,%.4f,%.4f,%.1f,%.2f,%.2f,%.2f,"
                              "%.2f,%.1f,%.1f,%.1f\n",
                              o.mode.c_str(), cloud.size(), k, o.vertices, o.runs, (unsigned long long)iterations,
                              t.median, t.min, t.max, it.median, it.min, it.max, su.median, t.median - su.median,
-                             ca.median, double(before.rss) / 1e6, setup_peak_pp, input_pp, index_pp,
-                             mesh_peak / 1e6, per_vertex, out_pv, raw_pv));
+                             ca.median, double(before.rss) / 1e6, setup_peak_pp, input_pp, index_pp, mesh_peak / 1e6,
+                             per_vertex, out_pv, raw_pv));
 }
 
 // Removes the scratch files and directory however the function leaves.
@@ -440,8 +440,7 @@ struct ScratchDir {
 void write_file(const std::string& path, const std::string& head, const char* data, std::size_t size) {
     std::FILE* f = std::fopen(path.c_str(), "wb");
     if (!f) throw nmesh::IoError(path + ": cannot create");
-    const bool ok = std::fwrite(head.data(), 1, head.size(), f) == head.size() &&
-                    std::fwrite(data, 1, size, f) == size;
+    const bool ok = std::fwrite(head.data(), 1, head.size(), f) == head.size() && std::fwrite(data, 1, size, f) == size;
     if (std::fclose(f) != 0 || !ok) throw nmesh::IoError(path + ": cannot write");
 }
 
@@ -449,7 +448,8 @@ void write_file(const std::string& path, const std::string& head, const char* da
 void run_loading(const Options& o, const nmesh::PointCloud& cloud) {
     ScratchDir scratch;
     const std::uint32_t probe = 1;
-    if (*reinterpret_cast<const char*>(&probe) != 1) throw nmesh::Error("the PLY writer here assumes a little-endian machine");
+    if (*reinterpret_cast<const char*>(&probe) != 1)
+        throw nmesh::Error("the PLY writer here assumes a little-endian machine");
     const std::string ply = scratch.file("cloud.ply"), xyz = scratch.file("cloud.xyz");
     write_file(ply,
                "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(cloud.size()) +
@@ -487,13 +487,14 @@ void run_loading(const Options& o, const nmesh::PointCloud& cloud) {
         const Summary t = summarize(seconds);
         const double P = double(cloud.size());
         const std::string fmt = report.format == "xyz" ? "xyz" : "ply_binary";
-        std::printf("loading %s: %zu points, %.1f MB, %d runs: median %.4f s (min %.4f, max %.4f) = %.1f M points/s "
-                    "(min %.1f, max %.1f), %.0f MB/s\n",
-                    fmt.c_str(), cloud.size(), mb, o.runs, t.median, t.min, t.max, P / t.median / 1e6,
-                    P / t.max / 1e6, P / t.min / 1e6, mb / t.median);
-        append_csv(o.csv, format("%s,%zu,%.2f,%d,%.5f,%.5f,%.5f,%.2f,%.2f,%.2f,%.0f\n", fmt.c_str(), cloud.size(), mb,
-                                 o.runs, t.median, t.min, t.max, P / t.median / 1e6, P / t.max / 1e6,
-                                 P / t.min / 1e6, mb / t.median));
+        std::printf(
+            "loading %s: %zu points, %.1f MB, %d runs: median %.4f s (min %.4f, max %.4f) = %.1f M points/s "
+            "(min %.1f, max %.1f), %.0f MB/s\n",
+            fmt.c_str(), cloud.size(), mb, o.runs, t.median, t.min, t.max, P / t.median / 1e6, P / t.max / 1e6,
+            P / t.min / 1e6, mb / t.median);
+        append_csv(o.csv,
+                   format("%s,%zu,%.2f,%d,%.5f,%.5f,%.5f,%.2f,%.2f,%.2f,%.0f\n", fmt.c_str(), cloud.size(), mb, o.runs,
+                          t.median, t.min, t.max, P / t.median / 1e6, P / t.max / 1e6, P / t.min / 1e6, mb / t.median));
     }
 }
 
@@ -513,10 +514,11 @@ void run_pair(const Options& o, const nmesh::PointCloud& small, const nmesh::Poi
         ratio.push_back(b.back() / a.back());
     }
     const Summary sa = summarize(a), sb = summarize(b), sr = summarize(ratio);
-    std::printf("pair: %zu and %zu points -> %u vertices, %d alternating runs each: median %.3f s (min %.3f, max %.3f) "
-                "and %.3f s (min %.3f, max %.3f); ratio per pair median %.2f (min %.2f, max %.2f)\n",
-                small.size(), large.size(), o.vertices, o.runs, sa.median, sa.min, sa.max, sb.median, sb.min, sb.max,
-                sr.median, sr.min, sr.max);
+    std::printf(
+        "pair: %zu and %zu points -> %u vertices, %d alternating runs each: median %.3f s (min %.3f, max %.3f) "
+        "and %.3f s (min %.3f, max %.3f); ratio per pair median %.2f (min %.2f, max %.2f)\n",
+        small.size(), large.size(), o.vertices, o.runs, sa.median, sa.min, sa.max, sb.median, sb.min, sb.max, sr.median,
+        sr.min, sr.max);
     append_csv(o.csv, format("%zu,%zu,%u,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f\n", small.size(), large.size(),
                              o.vertices, o.runs, sa.median, sa.min, sa.max, sb.median, sb.min, sb.max, sr.median,
                              sr.min, sr.max));
@@ -554,14 +556,19 @@ int main(int argc, char** argv) {
     try {
         const nmesh::PointCloud base = nmesh::read_points(o.cloud);
         const std::uint32_t k =
-            o.points == 0 ? 1u : std::max<std::uint32_t>(1, std::uint32_t(std::llround(double(o.points) / double(base.size()))));
+            o.points == 0
+                ? 1u
+                : std::max<std::uint32_t>(1, std::uint32_t(std::llround(double(o.points) / double(base.size()))));
         const auto t0 = Clock::now();
         const nmesh::PointCloud cloud = upsample(base, k);
         std::fprintf(stderr, "cloud: %s x %u = %zu points (generated in %.2f s)\n", o.cloud.c_str(), k, cloud.size(),
                      std::chrono::duration<double>(Clock::now() - t0).count());
-        if (o.mode == "loading") run_loading(o, cloud);
-        else if (o.mode == "pair") run_pair(o, base, cloud);
-        else run_reconstruction(o, cloud, k);
+        if (o.mode == "loading")
+            run_loading(o, cloud);
+        else if (o.mode == "pair")
+            run_pair(o, base, cloud);
+        else
+            run_reconstruction(o, cloud, k);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 1;

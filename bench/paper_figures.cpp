@@ -136,10 +136,10 @@ int main(int argc, char** argv) {
         write_row(out + "/growth.png", growth);
 
         // Figures 6-9.
-        write_row(out + "/worst_nm_vs_es.png", {tile(run(cloud, 5000, 0.01, 0.002, false)),
-                                                tile(run(cloud, 5000, 0.01, 0.002, true))});
-        write_row(out + "/best_nm_vs_es.png", {tile(run(cloud, 5000, 0.08, 0.01, false)),
-                                               tile(run(cloud, 5000, 0.08, 0.01, true))});
+        write_row(out + "/worst_nm_vs_es.png",
+                  {tile(run(cloud, 5000, 0.01, 0.002, false)), tile(run(cloud, 5000, 0.01, 0.002, true))});
+        write_row(out + "/best_nm_vs_es.png",
+                  {tile(run(cloud, 5000, 0.08, 0.01, false)), tile(run(cloud, 5000, 0.08, 0.01, true))});
 
         // Figure 10 and its error map.
         const std::vector<float> error = nmesh::vertex_distances_to_cloud(cloud.points, full);

@@ -118,7 +118,8 @@ int main(int argc, char** argv) {
             (finish_mode != "both" && finish_mode != "on" && finish_mode != "off"))
             throw nmesh::cli::UsageError("give clouds, --csv and --md; --finish is both, on or off");
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "%s\nusage: %s CLOUD... --csv OUT.csv --md OUT.md [--seeds 1-20] "
+        std::fprintf(stderr,
+                     "%s\nusage: %s CLOUD... --csv OUT.csv --md OUT.md [--seeds 1-20] "
                      "[--sizes 1000,3000,10000,30000] [--finish both|on|off] [--check] [--exempt NAME,...]\n",
                      e.what(), argv[0]);
         return 2;
@@ -139,7 +140,8 @@ int main(int argc, char** argv) {
                     for (const std::uint64_t seed : seeds) {
                         runs.push_back(run_one(name, cloud, std::uint32_t(n), seed, finish));
                         const Run& r = runs.back();
-                        std::fprintf(stderr, "%s %u seed %llu %s: %zu crossing pairs, inward %.4f%%, Hausdorff %.2f%%%s%s\n",
+                        std::fprintf(stderr,
+                                     "%s %u seed %llu %s: %zu crossing pairs, inward %.4f%%, Hausdorff %.2f%%%s%s\n",
                                      name.c_str(), r.vertices, (unsigned long long)r.seed,
                                      finish ? "finished" : "learnt", r.crossing_pairs, 100.0 * r.inward_share,
                                      100.0 * r.hausdorff_rel, r.error.empty() ? "" : ", error: ", r.error.c_str());
@@ -159,8 +161,8 @@ int main(int argc, char** argv) {
         out.precision(6);
         for (const Run& r : runs)
             out << r.cloud << ',' << r.vertices << ',' << r.seed << ',' << (r.finish ? 1 : 0) << ',' << r.crossing_pairs
-                << ',' << r.volume << ',' << r.inward_share << ',' << r.hausdorff_rel << ',' << (r.closed ? 1 : 0) << ','
-                << r.genus << ',' << r.seconds_learning << ',' << r.seconds_finish << ",\"" << r.error << "\"\n";
+                << ',' << r.volume << ',' << r.inward_share << ',' << r.hausdorff_rel << ',' << (r.closed ? 1 : 0)
+                << ',' << r.genus << ',' << r.seconds_learning << ',' << r.seconds_finish << ",\"" << r.error << "\"\n";
     }
     // Summary per cloud, size and stage setting, in the order run.
     std::vector<std::tuple<std::string, std::uint32_t, bool>> keys;
@@ -196,11 +198,13 @@ int main(int argc, char** argv) {
             most_inward = std::max(most_inward, r->inward_share);
             negative += r->volume < 0.0;
             h.push_back(100.0 * r->hausdorff_rel);
-            if (r->seconds_learning > 0.0) finish_ratio = std::max(finish_ratio, r->seconds_finish / r->seconds_learning);
+            if (r->seconds_learning > 0.0)
+                finish_ratio = std::max(finish_ratio, r->seconds_finish / r->seconds_learning);
             if (defective(*r) && std::find(exempt.begin(), exempt.end(), r->cloud) == exempt.end()) failed = true;
         }
         const nmesh::bench::Summary s = h.empty() ? nmesh::bench::Summary{} : nmesh::bench::summarize(h);
-        std::snprintf(buf, sizeof buf, "| %s | %u | %s | %zu | %zu | %zu | %zu | %.2f%% | %zu | %.2f%% | %.2f%% | %.2f | %.2f | %zu |\n",
+        std::snprintf(buf, sizeof buf,
+                      "| %s | %u | %s | %zu | %zu | %zu | %zu | %.2f%% | %zu | %.2f%% | %.2f%% | %.2f | %.2f | %zu |\n",
                       std::get<0>(key).c_str(), std::get<1>(key), std::get<2>(key) ? "finished" : "learnt", g.size(),
                       crossing, most, inward, 100.0 * most_inward, negative, s.median, s.max,
                       s.median > 0.0 ? s.max / s.median : 0.0, finish_ratio, errors);
@@ -208,9 +212,11 @@ int main(int argc, char** argv) {
     }
     std::snprintf(buf, sizeof buf, "\n%zu runs in %.0f s.\n", runs.size(), seconds);
     out << buf;
-    std::fprintf(stderr, "%zu runs in %.0f s; summary in %s, runs in %s\n", runs.size(), seconds, md.c_str(), csv.c_str());
+    std::fprintf(stderr, "%zu runs in %.0f s; summary in %s, runs in %s\n", runs.size(), seconds, md.c_str(),
+                 csv.c_str());
     if (check && failed) {
-        std::fprintf(stderr, "FAILED: some runs have crossing triangles, inward faces or errors (see %s)\n", md.c_str());
+        std::fprintf(stderr, "FAILED: some runs have crossing triangles, inward faces or errors (see %s)\n",
+                     md.c_str());
         return 1;
     }
     return 0;

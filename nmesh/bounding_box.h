@@ -10,8 +10,7 @@ namespace nmesh {
 
 struct BoundingBox {
     // An empty box: min > max, so extending it by any point gives that point.
-    Vec3 min{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
-             std::numeric_limits<float>::max()};
+    Vec3 min{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(), std::numeric_limits<float>::max()};
     Vec3 max{-std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(),
              -std::numeric_limits<float>::max()};
 

@@ -86,9 +86,9 @@ struct PlyElementInfo {
 
 // A summary of a file, for `nmesh info`.
 struct FileInfo {
-    std::string format;           // "ply", "xyz", "obj" or "off"
-    std::string encoding;         // PLY: "ascii", "binary_little_endian" or "binary_big_endian"; else "text"
-    std::uint64_t file_size = 0;  // bytes
+    std::string format;                    // "ply", "xyz", "obj" or "off"
+    std::string encoding;                  // PLY: "ascii", "binary_little_endian" or "binary_big_endian"; else "text"
+    std::uint64_t file_size = 0;           // bytes
     std::vector<PlyElementInfo> elements;  // PLY header elements in file order; empty otherwise
     std::uint64_t points = 0;              // finite points, as read_points would return
     std::uint64_t non_finite = 0;          // points with a NaN or Inf coordinate

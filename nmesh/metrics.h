@@ -59,11 +59,11 @@ struct QualityReport {
     double hausdorff = 0.0, hausdorff_rel = 0.0;
 
     // Topology, over the vertices used by at least one triangle.
-    bool closed = false;    // every edge lies in exactly two triangles
-    bool manifold = false;  // every edge in one or two triangles, consistently oriented, and the
-                            // triangles around every vertex form one single fan
-    long long euler = 0;    // V - E + F
-    int genus = -1;         // sum over components of (2 - chi) / 2; -1 unless closed and manifold
+    bool closed = false;                   // every edge lies in exactly two triangles
+    bool manifold = false;                 // every edge in one or two triangles, consistently oriented, and the
+                                           // triangles around every vertex form one single fan
+    long long euler = 0;                   // V - E + F
+    int genus = -1;                        // sum over components of (2 - chi) / 2; -1 unless closed and manifold
     std::size_t components = 0;            // connected through shared vertices
     std::size_t isolated_vertices = 0;     // positions used by no triangle
     std::size_t degenerate_triangles = 0;  // a repeated vertex or zero area
@@ -92,8 +92,7 @@ struct QualityReport {
 // Throws InputError if `points` is empty, if a point or a mesh vertex has a NaN or infinite
 // coordinate, if the mesh has no triangle, or if a triangle refers to a vertex that does not
 // exist; ParameterError if options.surface_samples is 0.
-QualityReport evaluate(PointSpan points, const IndexedMesh& mesh,
-                       const EvalOptions& options = {});
+QualityReport evaluate(PointSpan points, const IndexedMesh& mesh, const EvalOptions& options = {});
 
 // The report as one flat JSON object, keys named as the fields above (genus and undefined
 // relative values are written as null). No trailing newline.
@@ -119,8 +118,7 @@ double point_triangle_squared_distance(const Vec3& p, const Vec3& a, const Vec3&
 // Whether the closed triangles abc and def share at least one point (touching counts), coplanar
 // pairs included, decided exactly from the float coordinates (adaptive-precision orientation
 // signs). Both triangles must be non-degenerate.
-bool triangles_intersect(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& e,
-                         const Vec3& f);
+bool triangles_intersect(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& e, const Vec3& f);
 
 // The smallest interior angle of the triangle abc, in degrees (0 for a degenerate triangle).
 double min_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c);

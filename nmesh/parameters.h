@@ -12,12 +12,12 @@ namespace nmesh {
 struct Parameters {
     std::uint32_t target_vertices = 10000;  // step 9: stop at this many vertices (>= 4, and at
                                             // most 357,913,927, the mesh's limit less a margin)
-    double alpha_w = 0.08;   // eq. (2): learning rate of the winner vertex, in (0, 1]
-    double alpha_n = 0.01;   // eq. (3): learning rate of the winner's neighbours, in [0, 1]
-    double alpha = 0.95;     // eq. (7): signal counter decay per iteration, in (0, 1)
-    std::uint32_t cvs = 100; // step 7: a vertex split every Cvs iterations (>= 1)
-    std::uint32_t cec = 20;  // step 8: inactive vertices removed every Cec * n iterations (>= 1)
-    bool edge_swap = true;   // Neural Meshes ES; false gives the basic Neural Meshes algorithm
+    double alpha_w = 0.08;                  // eq. (2): learning rate of the winner vertex, in (0, 1]
+    double alpha_n = 0.01;                  // eq. (3): learning rate of the winner's neighbours, in [0, 1]
+    double alpha = 0.95;                    // eq. (7): signal counter decay per iteration, in (0, 1)
+    std::uint32_t cvs = 100;                // step 7: a vertex split every Cvs iterations (>= 1)
+    std::uint32_t cec = 20;                 // step 8: inactive vertices removed every Cec * n iterations (>= 1)
+    bool edge_swap = true;                  // Neural Meshes ES; false gives the basic Neural Meshes algorithm
     // Choice beyond the paper: step 3 may not fold the winner's triangles back against its fan,
     // and a winner found folded moves to its ring's centroid instead (NeuralMesh::guard_fold).
     // Without it, folds of the coarse early mesh grow into inside-out parts. Off by itself for a

@@ -13,7 +13,8 @@ class PointSpan {
 public:
     constexpr PointSpan() = default;
     constexpr PointSpan(const Vec3* data, std::size_t size) : data_(data), size_(size) {}
-    PointSpan(const std::vector<Vec3>& points) : data_(points.data()), size_(points.size()) {}  // NOLINT: implicit by design
+    PointSpan(const std::vector<Vec3>& points)
+        : data_(points.data()), size_(points.size()) {}  // NOLINT: implicit by design
 
     constexpr const Vec3* data() const { return data_; }
     constexpr std::size_t size() const { return size_; }

@@ -96,10 +96,10 @@ struct Image {
 
 // The orthographic camera of a render, in output pixels.
 struct Camera {
-    Vec3 center;   // centre of the bounding sphere; it lands on the centre of the image
-    Vec3 right;    // unit vector along the image's x axis
-    Vec3 up;       // unit vector towards the image's top
-    Vec3 toward;   // unit vector from the scene towards the camera
+    Vec3 center;         // centre of the bounding sphere; it lands on the centre of the image
+    Vec3 right;          // unit vector along the image's x axis
+    Vec3 up;             // unit vector towards the image's top
+    Vec3 toward;         // unit vector from the scene towards the camera
     double scale = 1.0;  // pixels per mesh unit
     int width = 0;
     int height = 0;

@@ -7,23 +7,23 @@ namespace nmesh {
 
 // Counts and timings of one run.
 struct Statistics {
-    std::uint64_t iterations = 0;        // steps 1-6 executed (learning + settling)
-    std::uint64_t settle_iterations = 0; // of which in the settling phase
-    std::uint64_t splits = 0;            // step 7
-    std::uint64_t collapses = 0;         // step 8
-    std::uint64_t collapses_refused = 0; // inactive vertices with no legal collapse (kept)
-    std::uint64_t removal_passes = 0;    // step 8 passes
-    std::uint64_t swaps_tried = 0;       // edge swap: flips attempted (legal)
-    std::uint64_t swaps_kept = 0;        //   kept: the new edge deviates less
-    std::uint64_t swaps_undone = 0;      //   undone: it did not
-    std::uint64_t swaps_illegal = 0;     //   the worst edge could not be flipped
-    std::uint64_t moves_shortened = 0;   // step 3 moves shortened: they would fold the winner's fan
-    std::uint64_t folds_undone = 0;      // folded winners moved towards their ring's centroid instead
-    std::uint64_t indexed_points = 0;    // points in the nearest-point index (0 when none was built)
-    std::uint64_t index_bytes = 0;       //   its memory (PointGrid::memory_bytes)
-    double seconds = 0.0;                // learning time, wall clock (normalisation included)
-    double seconds_finish = 0.0;         // the finishing stage (Parameters::finish), wall clock
-    bool finished = false;               // the finishing stage ran and its mesh was returned
+    std::uint64_t iterations = 0;         // steps 1-6 executed (learning + settling)
+    std::uint64_t settle_iterations = 0;  // of which in the settling phase
+    std::uint64_t splits = 0;             // step 7
+    std::uint64_t collapses = 0;          // step 8
+    std::uint64_t collapses_refused = 0;  // inactive vertices with no legal collapse (kept)
+    std::uint64_t removal_passes = 0;     // step 8 passes
+    std::uint64_t swaps_tried = 0;        // edge swap: flips attempted (legal)
+    std::uint64_t swaps_kept = 0;         //   kept: the new edge deviates less
+    std::uint64_t swaps_undone = 0;       //   undone: it did not
+    std::uint64_t swaps_illegal = 0;      //   the worst edge could not be flipped
+    std::uint64_t moves_shortened = 0;    // step 3 moves shortened: they would fold the winner's fan
+    std::uint64_t folds_undone = 0;       // folded winners moved towards their ring's centroid instead
+    std::uint64_t indexed_points = 0;     // points in the nearest-point index (0 when none was built)
+    std::uint64_t index_bytes = 0;        //   its memory (PointGrid::memory_bytes)
+    double seconds = 0.0;                 // learning time, wall clock (normalisation included)
+    double seconds_finish = 0.0;          // the finishing stage (Parameters::finish), wall clock
+    bool finished = false;                // the finishing stage ran and its mesh was returned
     // The output checked (reconstruct() does it for every mesh it returns): the triangles were
     // reversed to face outward (negative signed volume), crossing triangle pairs by the exact
     // test, faces pointing inward. A valid surface has no crossing pair and no inward face.
@@ -31,8 +31,7 @@ struct Statistics {
     std::uint64_t crossing_pairs = 0;
     std::uint64_t inward_faces = 0;
     // Time split by phase, filled only when Callbacks::profile is set (timing costs time).
-    double seconds_winner = 0.0, seconds_update = 0.0, seconds_split = 0.0,
-           seconds_collapse = 0.0, seconds_swap = 0.0;
+    double seconds_winner = 0.0, seconds_update = 0.0, seconds_split = 0.0, seconds_collapse = 0.0, seconds_swap = 0.0;
 };
 
 }  // namespace nmesh

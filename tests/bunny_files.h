@@ -58,8 +58,8 @@ inline void write_bunny_ascii_mesh(const std::string& path) {
         << faces.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
     std::size_t i = 0;
     for (const Vec3& p : bunny_scan()) {
-        out << shortest_text(p.x) << ' ' << shortest_text(p.y) << ' ' << shortest_text(p.z) << ' '
-            << (i % 7) * 0.125 << ' ' << (i % 5) * 0.25 << '\n';
+        out << shortest_text(p.x) << ' ' << shortest_text(p.y) << ' ' << shortest_text(p.z) << ' ' << (i % 7) * 0.125
+            << ' ' << (i % 5) * 0.25 << '\n';
         ++i;
     }
     for (const auto& f : faces) out << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << '\n';

@@ -45,6 +45,8 @@ inline std::vector<Vec3> read_scan(const std::string& path) {
 }
 
 // The bundled bunny (examples/data/bunny.ply, 35,947 points).
-inline PointCloud bundled_bunny() { return PointCloud{read_scan(std::string(NMESH_SOURCE_DIR) + "/examples/data/bunny.ply")}; }
+inline PointCloud bundled_bunny() {
+    return PointCloud{read_scan(std::string(NMESH_SOURCE_DIR) + "/examples/data/bunny.ply")};
+}
 
 }  // namespace nmesh::test

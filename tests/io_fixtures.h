@@ -34,8 +34,8 @@ struct TempDir {
     explicit TempDir(const std::string& prefix) {
         static int serial = 0;
         const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
-        path = std::filesystem::temp_directory_path() /
-               (prefix + std::to_string(stamp) + "_" + std::to_string(serial++));
+        path =
+            std::filesystem::temp_directory_path() / (prefix + std::to_string(stamp) + "_" + std::to_string(serial++));
         std::filesystem::create_directories(path);
     }
     ~TempDir() {

@@ -181,8 +181,7 @@ void check_most_active(const ActivityIndex& index, const Reference& ref) {
         }
     }
     REQUIRE(ref.contains(got));
-    INFO("got " << got << " (" << ref.tau[got] << "), expected " << best << " (" << max << ") at time "
-                << ref.now);
+    INFO("got " << got << " (" << ref.tau[got] << "), expected " << best << " (" << max << ") at time " << ref.now);
     REQUIRE(close(ref.tau[got], max));
     if (max - second > 2 * tolerance(max, second)) REQUIRE(got == best);
 }
@@ -225,8 +224,8 @@ double random_counter(Random& rng) {
 
 // A random run of `steps` events, decays being frequent; every `stretch_every` steps a long
 // stretch of `stretch` decays with a few signals, so that many epochs pass (renormalisation).
-void run_random_sequence(double alpha, std::uint64_t seed, int steps, std::uint32_t max_vertices,
-                         int stretch_every, int stretch) {
+void run_random_sequence(double alpha, std::uint64_t seed, int steps, std::uint32_t max_vertices, int stretch_every,
+                         int stretch) {
     Random rng(seed);
     Pair p(alpha);
     ActivityIndex& index = p.index;
@@ -238,10 +237,10 @@ void run_random_sequence(double alpha, std::uint64_t seed, int steps, std::uint3
     // Marks to query: a few taken along the way, an arbitrary value, the current ones; times:
     // recent and old ones, and now (the clock mark).
     auto query = [&](std::uint64_t span) {
-        std::vector<std::uint64_t> some{marks[marks.size() - 1 - rng.below(std::uint32_t(std::min<std::size_t>(marks.size(), 20)))],
-                                        marks[rng.below(std::uint32_t(marks.size()))],
-                                        std::uint64_t(rng.below(std::uint32_t(ref.stamp + 1))), index.mark(),
-                                        index.clock_mark()};
+        std::vector<std::uint64_t> some{
+            marks[marks.size() - 1 - rng.below(std::uint32_t(std::min<std::size_t>(marks.size(), 20)))],
+            marks[rng.below(std::uint32_t(marks.size()))], std::uint64_t(rng.below(std::uint32_t(ref.stamp + 1))),
+            index.mark(), index.clock_mark()};
         std::vector<std::uint64_t> times{ref.now};
         for (std::uint64_t back : {std::uint64_t(rng.below(20)), std::uint64_t(rng.below(std::uint32_t(span))) + 1})
             times.push_back(ref.now >= back ? ref.now - back : 0);
@@ -272,10 +271,9 @@ void run_random_sequence(double alpha, std::uint64_t seed, int steps, std::uint3
             REQUIRE_FALSE(index.contains(v));
         } else if (op < 40) {
             // Signals favour a few vertices, as winners do on a learning mesh.
-            const std::uint32_t v =
-                rng.below(2) == 0
-                    ? ref.ids[rng.below(std::min<std::uint32_t>(3, std::uint32_t(ref.ids.size())))]
-                    : pick();
+            const std::uint32_t v = rng.below(2) == 0
+                                        ? ref.ids[rng.below(std::min<std::uint32_t>(3, std::uint32_t(ref.ids.size())))]
+                                        : pick();
             p.signal(v);
             REQUIRE(index.last_stamp(v) == ref.order[v]);
             check_counter(index, ref, v);
@@ -379,8 +377,7 @@ TEST_CASE("ActivityIndex: a million decays renormalise the scale without losing 
     index.add(1);
     for (int i = 0; i < 1000000; ++i) {
         index.decay();
-        if (i == 49999)
-            CHECK(index.counter(0) == doctest::Approx(5.0 * std::pow(0.999, 50000)).epsilon(1e-9));
+        if (i == 49999) CHECK(index.counter(0) == doctest::Approx(5.0 * std::pow(0.999, 50000)).epsilon(1e-9));
         if (i % 100000 == 99999) index.signal(1);
     }
     CHECK(index.now() == 1000000);

@@ -131,8 +131,8 @@ TEST_CASE("reconstruct() indexes a sample of a cloud much denser than the mesh, 
         bool edge_swap, finish;
         std::uint64_t indexed;
     };
-    for (const Case c : {Case{true, true, 4800}, Case{true, false, 4800}, Case{false, true, 4800},
-                         Case{false, false, 0}}) {
+    for (const Case c :
+         {Case{true, true, 4800}, Case{true, false, 4800}, Case{false, true, 4800}, Case{false, false, 0}}) {
         CAPTURE(c.edge_swap);
         CAPTURE(c.finish);
         p.edge_swap = c.edge_swap;

@@ -22,8 +22,8 @@
 #include "nmesh/reconstruct.h"
 
 using namespace nmesh;
-using nmesh::test::icosahedron;
 using nmesh::test::bundled_bunny;
+using nmesh::test::icosahedron;
 using nmesh::test::sphere_cloud;
 
 namespace {
@@ -204,10 +204,10 @@ TEST_CASE("the pull towards the cloud ignores points facing the other way or out
     const Mesh mesh = Mesh::from_indexed(sheet);
     const CloudSurface surface(points, mesh);
     const Vec3 q{0.02f, 0.01f, 0.3f}, up{0, 0, 1};
-    CHECK(surface.pull(q, up, 1.0f, 1.0f).z == doctest::Approx(0.0f));   // onto the plane
-    CHECK(surface.pull(q, up, 0.1f, 1.0f).z == doctest::Approx(0.2f));   // by at most the limit
-    CHECK(surface.pull(q, -up, 1.0f, 1.0f) == q);                        // facing the other way
-    CHECK(surface.pull(q, up, 1.0f, 0.1f) == q);                         // out of reach
+    CHECK(surface.pull(q, up, 1.0f, 1.0f).z == doctest::Approx(0.0f));  // onto the plane
+    CHECK(surface.pull(q, up, 0.1f, 1.0f).z == doctest::Approx(0.2f));  // by at most the limit
+    CHECK(surface.pull(q, -up, 1.0f, 1.0f) == q);                       // facing the other way
+    CHECK(surface.pull(q, up, 1.0f, 0.1f) == q);                        // out of reach
 }
 
 // The normal of each cloud point by brute force: that of the learnt vertex nearest to it (ties: the
@@ -443,8 +443,10 @@ TEST_CASE("a repair that does not remove every defect keeps only an improvement"
     const Mesh q_before = q;
     const RepairResult rq = repair_folds_and_intersections(q, 1);
     CHECK(rq.intersecting_pairs_before > 0);
-    if (rq.reverted) CHECK(q.same_arrays(q_before));
-    else CHECK(rq.intersecting_pairs < rq.intersecting_pairs_before);
+    if (rq.reverted)
+        CHECK(q.same_arrays(q_before));
+    else
+        CHECK(rq.intersecting_pairs < rq.intersecting_pairs_before);
 }
 
 // ---- the stage ------------------------------------------------------------------------------------

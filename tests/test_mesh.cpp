@@ -440,7 +440,8 @@ TEST_CASE("the validator names the first violation") {
         // A torus-like handle would have V - E + F = 0; a pinched vertex (two cones sharing an
         // apex) is caught by the one-ring check.
         IndexedMesh pinch;
-        pinch.positions = {{0, 0, 0}, {1, 0, 1}, {-1, 1, 1}, {-1, -1, 1}, {1, 0, -1}, {-1, 1, -1}, {-1, -1, -1}, {0, 0, 2}, {0, 0, -2}};
+        pinch.positions = {{0, 0, 0},   {1, 0, 1},    {-1, 1, 1}, {-1, -1, 1}, {1, 0, -1},
+                           {-1, 1, -1}, {-1, -1, -1}, {0, 0, 2},  {0, 0, -2}};
         // Apex 0 joins two closed cones: (0,1,2,3 + cap 7) and (0,4,5,6 + cap 8).
         pinch.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 7, 2}, {2, 7, 3}, {3, 7, 1},
                            {0, 5, 4}, {0, 6, 5}, {0, 4, 6}, {4, 5, 8}, {5, 6, 8}, {6, 4, 8}};
@@ -453,7 +454,8 @@ TEST_CASE("the face index: dropped and built again") {
     // Operations with faces first, so that face slots are reused and no longer start at their
     // smallest half-edge.
     REQUIRE(m.try_flip(m.find_halfedge(Vertex(0), Vertex(5))));
-    const Vertex a = m.split(m.halfedge(Vertex(3)), m.ccw_rotated(m.ccw_rotated(m.halfedge(Vertex(3)))), {0.1f, 0.2f, 0.3f});
+    const Vertex a =
+        m.split(m.halfedge(Vertex(3)), m.ccw_rotated(m.ccw_rotated(m.halfedge(Vertex(3)))), {0.1f, 0.2f, 0.3f});
     REQUIRE(m.try_collapse(m.find_halfedge(a, Vertex(3))));
     REQUIRE(check_manifold(m).ok);
     // The centroid from any of a triangle's half-edges: the same bits.

@@ -2,7 +2,6 @@
 // binary layout, colours, polygon triangulation, index errors, and the atomic-write guarantees.
 #include <doctest/doctest.h>
 
-
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -115,8 +114,8 @@ TEST_CASE("write_mesh then read_mesh gives the same mesh bit for bit in every fo
         const char* name;
         bool ascii;
     };
-    for (const Case c : {Case{"m.ply", false}, Case{"ascii.ply", true}, Case{"m.obj", false},
-                         Case{"m.off", false}, Case{"UPPER.PLY", false}, Case{"upper.OBJ", false}}) {
+    for (const Case c : {Case{"m.ply", false}, Case{"ascii.ply", true}, Case{"m.obj", false}, Case{"m.off", false},
+                         Case{"UPPER.PLY", false}, Case{"upper.OBJ", false}}) {
         CAPTURE(c.name);
         nmesh::MeshWriteOptions options;
         options.ply_ascii = c.ascii;
@@ -170,8 +169,7 @@ TEST_CASE("text formats: the exact layout") {
     mesh.triangles = {{0, 1, 2}};
     TempDir dir;
     nmesh::write_mesh(dir.at("m.obj"), mesh);
-    CHECK(contents(dir.at("m.obj")) ==
-          "# 3 vertices, 1 triangles\nv 1.5 -2 0.1\nv 3 4 5\nv 6 7 8\nf 1 2 3\n");
+    CHECK(contents(dir.at("m.obj")) == "# 3 vertices, 1 triangles\nv 1.5 -2 0.1\nv 3 4 5\nv 6 7 8\nf 1 2 3\n");
     nmesh::write_mesh(dir.at("m.off"), mesh);
     CHECK(contents(dir.at("m.off")) == "OFF\n3 1 0\n1.5 -2 0.1\n3 4 5\n6 7 8\n3 0 1 2\n");
 }
@@ -198,8 +196,7 @@ TEST_CASE("vertex colours are written to PLY (both encodings) and OFF, and do no
     nmesh::write_mesh(dir.at("a.ply"), mesh, options);
     const std::string ascii = contents(dir.at("a.ply"));
     CHECK(ascii.find(color_props) != std::string::npos);
-    CHECK(ascii.find("end_header\n1 2 3 255 0 10\n4 5 6 0 128 20\n7 8 9 1 2 3\n3 0 1 2\n") !=
-          std::string::npos);
+    CHECK(ascii.find("end_header\n1 2 3 255 0 10\n4 5 6 0 128 20\n7 8 9 1 2 3\n3 0 1 2\n") != std::string::npos);
 
     nmesh::write_mesh(dir.at("c.off"), mesh, options);
     CHECK(contents(dir.at("c.off")) ==
@@ -312,10 +309,9 @@ TEST_CASE("read_mesh errors: indices out of range, short faces, missing face lis
                      {"line 13", "face 0 has 2 corners; a face needs at least 3"});
     check_read_error(dir.file("word.ply", head + faces + verts + "3 0 1 2\n3 0 x 2\n"),
                      {"line 14", "vertex index 'x' is not an integer"});
-    check_read_error(
-        dir.file("nolist.ply", head + "element face 1\nproperty list uchar int corners\nend_header\n" +
-                                   verts + "3 0 1 2\n"),
-        {"element 'face' has no 'vertex_indices' list property"});
+    check_read_error(dir.file("nolist.ply", head + "element face 1\nproperty list uchar int corners\nend_header\n" +
+                                                verts + "3 0 1 2\n"),
+                     {"element 'face' has no 'vertex_indices' list property"});
     check_read_error(dir.file("float.ply", head +
                                                "element face 1\nproperty list uchar float vertex_indices\n"
                                                "end_header\n" +
@@ -332,8 +328,8 @@ TEST_CASE("read_mesh errors: indices out of range, short faces, missing face lis
     for (int i = 0; i < 9; ++i) put(binary, 0.0f, false);
     binary += '\3';
     for (std::int32_t v : {0, 7, 1}) put(binary, v, false);
-    check_read_error(dir.file("hi_bin.ply", binary), {("byte offset " + std::to_string(face_offset)).c_str(),
-                                                      "vertex index 7 is out of range"});
+    check_read_error(dir.file("hi_bin.ply", binary),
+                     {("byte offset " + std::to_string(face_offset)).c_str(), "vertex index 7 is out of range"});
 
     check_read_error(dir.file("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"),
                      {"line 4", "vertex index 0 (OBJ indices start at 1)"});
@@ -345,8 +341,7 @@ TEST_CASE("read_mesh errors: indices out of range, short faces, missing face lis
                      {"line 4", "vertex index 99999999999999999999 is out of range (3 vertices"});
     check_read_error(dir.file("hugeneg.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -99999999999999999999\n"),
                      {"line 4", "vertex index -99999999999999999999 is out of range"});
-    check_read_error(dir.file("two.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n"),
-                     {"line 3", "at least 3 corners, found 2"});
+    check_read_error(dir.file("two.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n"), {"line 3", "at least 3 corners, found 2"});
     check_read_error(dir.file("word.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 b 2\n"),
                      {"line 4", "face corner 'b' does not start with a vertex index"});
     check_read_error(dir.file("hi.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"),
@@ -363,18 +358,17 @@ TEST_CASE("read_mesh errors: indices out of range, short faces, missing face lis
 TEST_CASE("write_mesh refuses an unknown extension or a missing directory, creating nothing") {
     const IndexedMesh mesh = random_mesh(4, 2, 1);
     TempDir dir;
-    CHECK_THROWS_WITH_AS(nmesh::write_mesh(dir.at("m.stl"), mesh),
-                         doctest::Contains("unknown mesh format '.stl'"), nmesh::IoError);
-    CHECK_THROWS_WITH_AS(nmesh::write_mesh(dir.at("mesh"), mesh), doctest::Contains("(no extension)"),
+    CHECK_THROWS_WITH_AS(nmesh::write_mesh(dir.at("m.stl"), mesh), doctest::Contains("unknown mesh format '.stl'"),
                          nmesh::IoError);
+    CHECK_THROWS_WITH_AS(nmesh::write_mesh(dir.at("mesh"), mesh), doctest::Contains("(no extension)"), nmesh::IoError);
     const std::string missing = dir.at("no/such/dir/m.ply");
     CHECK_THROWS_WITH_AS(nmesh::write_mesh(missing, mesh),
                          doctest::Contains((missing + ": cannot write: directory").c_str()), nmesh::IoError);
     CHECK(dir.names().empty());
     fs::create_directories(dir.path / "sub");
     std::ofstream(dir.at("sub/file")) << "x";
-    CHECK_THROWS_WITH_AS(nmesh::write_mesh(dir.at("sub/file/m.ply"), mesh),
-                         doctest::Contains("is not a directory"), nmesh::IoError);
+    CHECK_THROWS_WITH_AS(nmesh::write_mesh(dir.at("sub/file/m.ply"), mesh), doctest::Contains("is not a directory"),
+                         nmesh::IoError);
     CHECK(dir.names() == std::vector<std::string>{"sub"});
 }
 
@@ -386,8 +380,8 @@ TEST_CASE("check_mesh_output and check_output_location refuse what writing would
     CHECK_NOTHROW(nmesh::check_output_location(dir.at("m.stl")));  // any name will do for a plain file
     CHECK_THROWS_WITH_AS(nmesh::check_mesh_output(missing),
                          doctest::Contains((missing + ": cannot write: directory").c_str()), nmesh::IoError);
-    CHECK_THROWS_WITH_AS(nmesh::check_output_location(dir.at("no/stats.json")),
-                         doctest::Contains("does not exist"), nmesh::IoError);
+    CHECK_THROWS_WITH_AS(nmesh::check_output_location(dir.at("no/stats.json")), doctest::Contains("does not exist"),
+                         nmesh::IoError);
     CHECK_THROWS_WITH_AS(nmesh::check_output_location(""), doctest::Contains("without a name"), nmesh::IoError);
     std::ofstream(dir.at("file")) << "x";
     CHECK_THROWS_WITH_AS(nmesh::check_output_location(dir.at("file/stats.json")),
@@ -397,7 +391,9 @@ TEST_CASE("check_mesh_output and check_output_location refuse what writing would
     CHECK(dir.names() == std::vector<std::string>{"file"});
 }
 
-TEST_CASE("write_mesh refuses meshes no reader could take back (InputError for the mesh, ParameterError for the options; nothing written)") {
+TEST_CASE(
+    "write_mesh refuses meshes no reader could take back (InputError for the mesh, ParameterError for the options; "
+    "nothing written)") {
     TempDir dir;
     const std::string path = dir.at("m.ply");
     IndexedMesh mesh = random_mesh(4, 2, 2);
@@ -407,12 +403,12 @@ TEST_CASE("write_mesh refuses meshes no reader could take back (InputError for t
                          doctest::Contains("options.colors has 3 entries for 4"), nmesh::ParameterError);
     IndexedMesh bad_index = mesh;
     bad_index.triangles[1] = {0, 4, 1};
-    CHECK_THROWS_WITH_AS(nmesh::write_mesh(path, bad_index),
-                         doctest::Contains("mesh.triangles[1] uses vertex 4 of 4"), nmesh::InputError);
+    CHECK_THROWS_WITH_AS(nmesh::write_mesh(path, bad_index), doctest::Contains("mesh.triangles[1] uses vertex 4 of 4"),
+                         nmesh::InputError);
     IndexedMesh bad_point = mesh;
     bad_point.positions[2].y = std::numeric_limits<float>::infinity();
-    CHECK_THROWS_WITH_AS(nmesh::write_mesh(path, bad_point),
-                         doctest::Contains("mesh.positions[2] is not finite"), nmesh::InputError);
+    CHECK_THROWS_WITH_AS(nmesh::write_mesh(path, bad_point), doctest::Contains("mesh.positions[2] is not finite"),
+                         nmesh::InputError);
     CHECK(dir.names().empty());
 }
 

@@ -127,10 +127,14 @@ struct Walker {
     void step(bool growing) {
         const std::uint32_t r = below(100);
         const std::uint32_t grow = growing ? 45 : 10;
-        if (r < grow) split();
-        else if (r < grow + 5) split_and_undo();
-        else if (r < grow + 5 + (growing ? 20 : 55)) collapse();
-        else flip();
+        if (r < grow)
+            split();
+        else if (r < grow + 5)
+            split_and_undo();
+        else if (r < grow + 5 + (growing ? 20 : 55))
+            collapse();
+        else
+            flip();
     }
 };
 
@@ -165,7 +169,8 @@ struct SlotModel {
     std::vector<std::uint32_t> list() const { return {free.rbegin(), free.rend()}; }
 };
 
-template <class Next> std::vector<std::uint32_t> walk_free_list(std::uint32_t head, std::size_t capacity, Next next) {
+template <class Next>
+std::vector<std::uint32_t> walk_free_list(std::uint32_t head, std::size_t capacity, Next next) {
     std::vector<std::uint32_t> list;
     for (std::uint32_t s = head; s != kInvalidIndex && list.size() <= capacity; s = next(s)) list.push_back(s);
     return list;
@@ -202,14 +207,19 @@ struct ModelWalker {
         CHECK(first_wrong(v, [&](std::uint32_t s) { return mesh.is_removed(Vertex(s)); }) == kInvalidIndex);
         CHECK(first_wrong(f, [&](std::uint32_t s) { return mesh.is_removed(Face(s)); }) == kInvalidIndex);
         CHECK(first_wrong(e, [&](std::uint32_t s) { return mesh.is_removed(Edge(s)); }) == kInvalidIndex);
-        CHECK(first_wrong(e, [&](std::uint32_t s) { return mesh.is_removed(Mesh::halfedge(Edge(s), 0)); }) == kInvalidIndex);
-        CHECK(first_wrong(e, [&](std::uint32_t s) { return mesh.is_removed(Mesh::halfedge(Edge(s), 1)); }) == kInvalidIndex);
+        CHECK(first_wrong(e, [&](std::uint32_t s) { return mesh.is_removed(Mesh::halfedge(Edge(s), 0)); }) ==
+              kInvalidIndex);
+        CHECK(first_wrong(e, [&](std::uint32_t s) { return mesh.is_removed(Mesh::halfedge(Edge(s), 1)); }) ==
+              kInvalidIndex);
         REQUIRE(mesh.n_vertices() == v.count());
         REQUIRE(mesh.n_edges() == e.count());
         REQUIRE(mesh.n_faces() == f.count());
-        REQUIRE(walk_free_list(mesh.free_vertex_head(), v.alive.size(), [&](std::uint32_t s) { return mesh.next_free_vertex(s); }) == v.list());
-        REQUIRE(walk_free_list(mesh.free_edge_head(), e.alive.size(), [&](std::uint32_t s) { return mesh.next_free_edge(s); }) == e.list());
-        REQUIRE(walk_free_list(mesh.free_face_head(), f.alive.size(), [&](std::uint32_t s) { return mesh.next_free_face(s); }) == f.list());
+        REQUIRE(walk_free_list(mesh.free_vertex_head(), v.alive.size(),
+                               [&](std::uint32_t s) { return mesh.next_free_vertex(s); }) == v.list());
+        REQUIRE(walk_free_list(mesh.free_edge_head(), e.alive.size(),
+                               [&](std::uint32_t s) { return mesh.next_free_edge(s); }) == e.list());
+        REQUIRE(walk_free_list(mesh.free_face_head(), f.alive.size(),
+                               [&](std::uint32_t s) { return mesh.next_free_face(s); }) == f.list());
     }
 
     // The slots a split takes, in this order: vertex a; edges a-b, b-c, d-b; faces (a, b, c),
@@ -241,7 +251,8 @@ struct ModelWalker {
         if (!mesh.can_collapse(h)) return;
         const Halfedge t = Mesh::twin(h);
         const std::uint32_t fh = mesh.face(h).idx, ft = mesh.face(t).idx;
-        const std::uint32_t eh = Mesh::edge(h).idx, en = Mesh::edge(mesh.next(h)).idx, ep = Mesh::edge(mesh.prev(t)).idx;
+        const std::uint32_t eh = Mesh::edge(h).idx, en = Mesh::edge(mesh.next(h)).idx,
+                            ep = Mesh::edge(mesh.prev(t)).idx;
         const std::uint32_t a = mesh.from(h).idx;
         mesh.collapse(h);
         f.release(fh);
@@ -269,9 +280,12 @@ struct ModelWalker {
 
     void step(bool growing) {
         const std::uint32_t r = below(100);
-        if (r < (growing ? 50u : 15u)) split();
-        else if (r < 75) collapse();
-        else flip();
+        if (r < (growing ? 50u : 15u))
+            split();
+        else if (r < 75)
+            collapse();
+        else
+            flip();
     }
 };
 
@@ -316,7 +330,8 @@ void require_same_connectivity(const Mesh& with, const Mesh& without, const char
     for (std::uint32_t h = 0; h < with.halfedge_capacity(); ++h) {
         REQUIRE(with.is_removed(Halfedge(h)) == without.is_removed(Halfedge(h)));
         if (with.is_removed(Halfedge(h))) continue;
-        REQUIRE((with.to(Halfedge(h)) == without.to(Halfedge(h)) && with.next(Halfedge(h)) == without.next(Halfedge(h))));
+        REQUIRE(
+            (with.to(Halfedge(h)) == without.to(Halfedge(h)) && with.next(Halfedge(h)) == without.next(Halfedge(h))));
     }
     for (std::uint32_t v = 0; v < with.vertex_capacity(); ++v) {
         REQUIRE(with.is_removed(Vertex(v)) == without.is_removed(Vertex(v)));
@@ -350,7 +365,8 @@ TEST_CASE("without the face index, random operations keep the same connectivity 
                         what = "split";
                         const Halfedge to_c = random_halfedge();
                         Halfedge to_d = to_c;
-                        for (std::uint32_t i = 1 + below(with.valence(with.from(to_c)) - 1); i > 0; --i) to_d = with.ccw_rotated(to_d);
+                        for (std::uint32_t i = 1 + below(with.valence(with.from(to_c)) - 1); i > 0; --i)
+                            to_d = with.ccw_rotated(to_d);
                         const Vec3 p{float(below(1000)), 0.5f, -0.25f};
                         REQUIRE(with.split(to_c, to_d, p) == without.split(to_c, to_d, p));
                     } else if (r < 75) {
@@ -419,12 +435,12 @@ TEST_CASE("random split/collapse/flip sequences keep a valid closed manifold") {
     g_tally.unflips += tally.unflips;
     g_tally.refused += tally.refused;
     g_tally.undone_splits += tally.undone_splits;
-    std::printf("mesh properties: %llu operations checked (%llu splits, %llu collapses, %llu flips, %llu unflips, "
-                "%llu split+collapse round trips, %llu refused)\n",
-                (unsigned long long)tally.total(), (unsigned long long)tally.splits,
-                (unsigned long long)tally.collapses, (unsigned long long)tally.flips,
-                (unsigned long long)tally.unflips, (unsigned long long)tally.undone_splits,
-                (unsigned long long)tally.refused);
+    std::printf(
+        "mesh properties: %llu operations checked (%llu splits, %llu collapses, %llu flips, %llu unflips, "
+        "%llu split+collapse round trips, %llu refused)\n",
+        (unsigned long long)tally.total(), (unsigned long long)tally.splits, (unsigned long long)tally.collapses,
+        (unsigned long long)tally.flips, (unsigned long long)tally.unflips, (unsigned long long)tally.undone_splits,
+        (unsigned long long)tally.refused);
     CHECK(tally.total() >= 100000);
     CHECK(tally.refused > 0);
     CHECK(tally.collapses > 1000);

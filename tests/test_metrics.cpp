@@ -3,7 +3,6 @@
 // JSON form.
 #include <doctest/doctest.h>
 
-
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -56,8 +55,7 @@ IndexedMesh tetrahedron(const Vec3& offset = {0, 0, 0}) {
 // The unit cube [0, 1]^3 as 12 triangles: flat faces, so point-to-surface distances are simple.
 IndexedMesh unit_cube() {
     IndexedMesh m;
-    for (int i = 0; i < 8; ++i)
-        m.positions.push_back({float(i & 1), float((i >> 1) & 1), float((i >> 2) & 1)});
+    for (int i = 0; i < 8; ++i) m.positions.push_back({float(i & 1), float((i >> 1) & 1), float((i >> 2) & 1)});
     m.triangles = {{0, 1, 3}, {0, 3, 2}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
                    {2, 3, 7}, {2, 7, 6}, {0, 2, 6}, {0, 6, 4}, {1, 3, 7}, {1, 7, 5}};
     orient_outward(m, {0.5f, 0.5f, 0.5f});
@@ -69,11 +67,11 @@ IndexedMesh unit_cube() {
 IndexedMesh icosphere(int levels, const Vec3& center = {0, 0, 0}) {
     const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
     IndexedMesh m;
-    m.positions = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    m.triangles = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                   {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-                   {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+    m.positions = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+    m.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                   {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                   {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
     for (Vec3& p : m.positions) p = nmesh::normalized(p);
     for (int l = 0; l < levels; ++l) {
         std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mid;
@@ -143,8 +141,7 @@ double brute_force_dm(const std::vector<Vec3>& points, const IndexedMesh& m) {
     double sum = 0.0;
     for (const Vec3& p : points) {
         float best = std::numeric_limits<float>::infinity();
-        for (const Triangle& t : m.triangles)
-            best = std::min(best, nmesh::squared_distance(p, centroid(m, t)));
+        for (const Triangle& t : m.triangles) best = std::min(best, nmesh::squared_distance(p, centroid(m, t)));
         sum += std::sqrt(double(best));
     }
     return sum / double(points.size());
@@ -153,8 +150,8 @@ double brute_force_dm(const std::vector<Vec3>& points, const IndexedMesh& m) {
 double brute_force_p2s(const Vec3& p, const IndexedMesh& m) {
     double best = std::numeric_limits<double>::infinity();
     for (const Triangle& t : m.triangles)
-        best = std::min(best, nmesh::point_triangle_squared_distance(p, m.positions[t[0]], m.positions[t[1]],
-                                                                     m.positions[t[2]]));
+        best = std::min(
+            best, nmesh::point_triangle_squared_distance(p, m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]));
     return std::sqrt(best);
 }
 
@@ -185,7 +182,6 @@ Vec3 random_unit_vector(std::mt19937& rng) {
     }
 }
 
-
 // The value of `key` in a flat JSON object, as text ("" when missing); fails if it appears twice.
 std::string json_value(const std::string& json, const std::string& key) {
     const std::string quoted = "\"" + key + "\": ";
@@ -203,16 +199,16 @@ std::string json_value(const std::string& json, const std::string& key) {
 TEST_CASE("point_triangle_squared_distance in every Voronoi region of a triangle") {
     const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
     const auto d2 = [&](const Vec3& p) { return nmesh::point_triangle_squared_distance(p, a, b, c); };
-    CHECK(d2({0.25f, 0.25f, 2}) == doctest::Approx(4.0));     // face (above)
-    CHECK(d2({0.25f, 0.25f, -3}) == doctest::Approx(9.0));    // face (below)
-    CHECK(d2({0.2f, 0.3f, 0}) == doctest::Approx(0.0));       // in the triangle
-    CHECK(d2({-1, -2, 1}) == doctest::Approx(6.0));           // vertex a
-    CHECK(d2({2, -1, 0}) == doctest::Approx(2.0));            // vertex b
-    CHECK(d2({-1, 3, 0}) == doctest::Approx(5.0));            // vertex c
-    CHECK(d2({0.5f, -2, 1}) == doctest::Approx(5.0));         // edge ab, foot (0.5, 0, 0)
-    CHECK(d2({-3, 0.5f, 0}) == doctest::Approx(9.0));         // edge ca, foot (0, 0.5, 0)
-    CHECK(d2({1, 1, 3}) == doctest::Approx(9.5));             // edge bc, foot (0.5, 0.5, 0)
-    CHECK(d2({0.75f, 0.75f, 0}) == doctest::Approx(0.125));   // edge bc, in the plane
+    CHECK(d2({0.25f, 0.25f, 2}) == doctest::Approx(4.0));    // face (above)
+    CHECK(d2({0.25f, 0.25f, -3}) == doctest::Approx(9.0));   // face (below)
+    CHECK(d2({0.2f, 0.3f, 0}) == doctest::Approx(0.0));      // in the triangle
+    CHECK(d2({-1, -2, 1}) == doctest::Approx(6.0));          // vertex a
+    CHECK(d2({2, -1, 0}) == doctest::Approx(2.0));           // vertex b
+    CHECK(d2({-1, 3, 0}) == doctest::Approx(5.0));           // vertex c
+    CHECK(d2({0.5f, -2, 1}) == doctest::Approx(5.0));        // edge ab, foot (0.5, 0, 0)
+    CHECK(d2({-3, 0.5f, 0}) == doctest::Approx(9.0));        // edge ca, foot (0, 0.5, 0)
+    CHECK(d2({1, 1, 3}) == doctest::Approx(9.5));            // edge bc, foot (0.5, 0.5, 0)
+    CHECK(d2({0.75f, 0.75f, 0}) == doctest::Approx(0.125));  // edge bc, in the plane
     // The answer does not depend on the order of the vertices.
     CHECK(nmesh::point_triangle_squared_distance({1, 1, 3}, c, a, b) == doctest::Approx(9.5));
     CHECK(nmesh::point_triangle_squared_distance({1, 1, 3}, b, a, c) == doctest::Approx(9.5));
@@ -253,22 +249,22 @@ TEST_CASE("triangles_intersect on hand-built configurations") {
     const Vec3 a{0, 0, 0}, b{4, 0, 0}, c{0, 4, 0};  // in the plane z = 0
     const auto both_ways = [&](const Vec3& d, const Vec3& e, const Vec3& f) {
         const bool r = nmesh::triangles_intersect(a, b, c, d, e, f);
-        CHECK(nmesh::triangles_intersect(d, e, f, a, b, c) == r);   // symmetric
-        CHECK(nmesh::triangles_intersect(b, c, a, f, d, e) == r);   // vertex order does not matter
-        CHECK(nmesh::triangles_intersect(a, c, b, d, f, e) == r);   // nor orientation
+        CHECK(nmesh::triangles_intersect(d, e, f, a, b, c) == r);  // symmetric
+        CHECK(nmesh::triangles_intersect(b, c, a, f, d, e) == r);  // vertex order does not matter
+        CHECK(nmesh::triangles_intersect(a, c, b, d, f, e) == r);  // nor orientation
         return r;
     };
-    CHECK(both_ways({1, 1, -1}, {1, 1, 1}, {2, 0.5f, 1}));           // pierces the interior
-    CHECK_FALSE(both_ways({1, 1, 1}, {2, 1, 1}, {1, 2, 2}));          // above
-    CHECK_FALSE(both_ways({3, 3, -1}, {3, 3, 1}, {5, 5, 0}));         // crosses the plane beside abc
-    CHECK(both_ways({1, 1, 0}, {1, 1, 2}, {2, 1, 2}));                // a vertex on the interior
-    CHECK(both_ways({2, -1, 0}, {2, 1, 0}, {2, 0, 3}));               // an edge lying across abc
-    CHECK(both_ways({-1, 2, 1}, {1, 2, -1}, {-2, 2, 0}));             // an edge touching edge ca
-    CHECK(both_ways({1, 1, 0}, {5, 1, 0}, {1, 5, 0}));                // coplanar, overlapping
-    CHECK(both_ways({0.5f, 0.5f, 0}, {1, 0.5f, 0}, {0.5f, 1, 0}));    // coplanar, nested
-    CHECK(both_ways({4, 0, 0}, {6, 0, 0}, {6, 2, 0}));                // coplanar, sharing a corner
-    CHECK_FALSE(both_ways({3, 3, 0}, {6, 3, 0}, {3, 6, 0}));          // coplanar, apart
-    CHECK_FALSE(both_ways({5, 0, 0}, {6, 0, 0}, {5, 1, 0}));          // coplanar, beside b
+    CHECK(both_ways({1, 1, -1}, {1, 1, 1}, {2, 0.5f, 1}));          // pierces the interior
+    CHECK_FALSE(both_ways({1, 1, 1}, {2, 1, 1}, {1, 2, 2}));        // above
+    CHECK_FALSE(both_ways({3, 3, -1}, {3, 3, 1}, {5, 5, 0}));       // crosses the plane beside abc
+    CHECK(both_ways({1, 1, 0}, {1, 1, 2}, {2, 1, 2}));              // a vertex on the interior
+    CHECK(both_ways({2, -1, 0}, {2, 1, 0}, {2, 0, 3}));             // an edge lying across abc
+    CHECK(both_ways({-1, 2, 1}, {1, 2, -1}, {-2, 2, 0}));           // an edge touching edge ca
+    CHECK(both_ways({1, 1, 0}, {5, 1, 0}, {1, 5, 0}));              // coplanar, overlapping
+    CHECK(both_ways({0.5f, 0.5f, 0}, {1, 0.5f, 0}, {0.5f, 1, 0}));  // coplanar, nested
+    CHECK(both_ways({4, 0, 0}, {6, 0, 0}, {6, 2, 0}));              // coplanar, sharing a corner
+    CHECK_FALSE(both_ways({3, 3, 0}, {6, 3, 0}, {3, 6, 0}));        // coplanar, apart
+    CHECK_FALSE(both_ways({5, 0, 0}, {6, 0, 0}, {5, 1, 0}));        // coplanar, beside b
 }
 
 TEST_CASE("min_angle_deg") {
@@ -630,9 +626,9 @@ TEST_CASE("topology of defective meshes") {
 TEST_CASE("self-intersections") {
     SUBCASE("one known crossing pair") {
         IndexedMesh m;
-        m.positions = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0},          // in the plane z = 0
-                       {1, 1, -1}, {1, 1, 1}, {2, 0.5f, 1},      // pierces the first
-                       {10, 10, 10}, {11, 10, 10}, {10, 11, 10}}; // far away
+        m.positions = {{0, 0, 0},    {4, 0, 0},    {0, 4, 0},      // in the plane z = 0
+                       {1, 1, -1},   {1, 1, 1},    {2, 0.5f, 1},   // pierces the first
+                       {10, 10, 10}, {11, 10, 10}, {10, 11, 10}};  // far away
         m.triangles = {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}};
         CHECK(quick_evaluate(m).self_intersections == 1);
         m.positions[3].z = 0.5f;  // lift the second above the first
@@ -675,16 +671,31 @@ TEST_CASE("write_json writes every key once, with the report's values") {
     const std::string json = out.str();
     CHECK(json.front() == '{');
     CHECK(json.back() == '}');
-    const std::pair<const char*, double> numbers[] = {
-        {"dm_x_t", r.dm_x_t}, {"dm_x_t_rel", r.dm_x_t_rel}, {"p2s_mean", r.p2s_mean},
-        {"p2s_mean_rel", r.p2s_mean_rel}, {"p2s_rms", r.p2s_rms}, {"p2s_rms_rel", r.p2s_rms_rel},
-        {"p2s_max", r.p2s_max}, {"p2s_max_rel", r.p2s_max_rel}, {"s2p_mean", r.s2p_mean},
-        {"s2p_mean_rel", r.s2p_mean_rel}, {"s2p_max", r.s2p_max}, {"s2p_max_rel", r.s2p_max_rel},
-        {"hausdorff", r.hausdorff}, {"hausdorff_rel", r.hausdorff_rel}, {"euler", double(r.euler)},
-        {"components", double(r.components)}, {"self_intersections", double(r.self_intersections)},
-        {"min_angle_min_deg", r.min_angle_min_deg}, {"min_angle_mean_deg", r.min_angle_mean_deg},
-        {"share_under_10deg", r.share_under_10deg}, {"vertices", 4.0}, {"faces", 3.0},
-        {"bbox_diagonal", r.bbox_diagonal}, {"degenerate_triangles", 0.0}, {"isolated_vertices", 0.0}};
+    const std::pair<const char*, double> numbers[] = {{"dm_x_t", r.dm_x_t},
+                                                      {"dm_x_t_rel", r.dm_x_t_rel},
+                                                      {"p2s_mean", r.p2s_mean},
+                                                      {"p2s_mean_rel", r.p2s_mean_rel},
+                                                      {"p2s_rms", r.p2s_rms},
+                                                      {"p2s_rms_rel", r.p2s_rms_rel},
+                                                      {"p2s_max", r.p2s_max},
+                                                      {"p2s_max_rel", r.p2s_max_rel},
+                                                      {"s2p_mean", r.s2p_mean},
+                                                      {"s2p_mean_rel", r.s2p_mean_rel},
+                                                      {"s2p_max", r.s2p_max},
+                                                      {"s2p_max_rel", r.s2p_max_rel},
+                                                      {"hausdorff", r.hausdorff},
+                                                      {"hausdorff_rel", r.hausdorff_rel},
+                                                      {"euler", double(r.euler)},
+                                                      {"components", double(r.components)},
+                                                      {"self_intersections", double(r.self_intersections)},
+                                                      {"min_angle_min_deg", r.min_angle_min_deg},
+                                                      {"min_angle_mean_deg", r.min_angle_mean_deg},
+                                                      {"share_under_10deg", r.share_under_10deg},
+                                                      {"vertices", 4.0},
+                                                      {"faces", 3.0},
+                                                      {"bbox_diagonal", r.bbox_diagonal},
+                                                      {"degenerate_triangles", 0.0},
+                                                      {"isolated_vertices", 0.0}};
     for (const auto& [key, value] : numbers) {
         CAPTURE(key);
         const std::string text = json_value(json, key);
@@ -744,7 +755,8 @@ TEST_CASE("evaluate rejects inputs it cannot measure") {
     bad.triangles[2][1] = 4;
     CHECK_THROWS_AS(nmesh::evaluate(m.positions, bad), nmesh::InputError);
     CHECK_THROWS_AS(nmesh::dm_cloud_to_centroids(m.positions, bad), nmesh::InputError);
-    CHECK_THROWS_AS(nmesh::evaluate(std::vector<Vec3>{{0, std::numeric_limits<float>::quiet_NaN(), 0}}, m), nmesh::InputError);
+    CHECK_THROWS_AS(nmesh::evaluate(std::vector<Vec3>{{0, std::numeric_limits<float>::quiet_NaN(), 0}}, m),
+                    nmesh::InputError);
     EvalOptions none;
     none.surface_samples = 0;
     CHECK_THROWS_AS(nmesh::evaluate(m.positions, m, none), nmesh::ParameterError);
@@ -770,20 +782,25 @@ TEST_CASE("a learnt bunny opened round three vertices, against its own vertices"
             if (t[0] == v || t[1] == v || t[2] == v)
                 for (std::uint32_t u : t)
                     for (const Triangle& s : mesh.triangles)
-                        if (s[0] == u || s[1] == u || s[2] == u) near_removed[s[0]] = near_removed[s[1]] = near_removed[s[2]] = true;
+                        if (s[0] == u || s[1] == u || s[2] == u)
+                            near_removed[s[0]] = near_removed[s[1]] = near_removed[s[2]] = true;
     }
     REQUIRE(removed.size() == 3);
     float ring = 0.0f;  // the largest distance from a removed vertex to its neighbours
-    mesh.triangles.erase(std::remove_if(mesh.triangles.begin(), mesh.triangles.end(), [&](const Triangle& t) {
-        for (std::uint32_t v : removed)
-            for (int k = 0; k < 3; ++k)
-                if (t[k] == v) {
-                    ring = std::max({ring, nmesh::distance(mesh.positions[v], mesh.positions[t[(k + 1) % 3]]),
-                                     nmesh::distance(mesh.positions[v], mesh.positions[t[(k + 2) % 3]])});
-                    return true;
-                }
-        return false;
-    }), mesh.triangles.end());
+    mesh.triangles.erase(
+        std::remove_if(mesh.triangles.begin(), mesh.triangles.end(),
+                       [&](const Triangle& t) {
+                           for (std::uint32_t v : removed)
+                               for (int k = 0; k < 3; ++k)
+                                   if (t[k] == v) {
+                                       ring = std::max(
+                                           {ring, nmesh::distance(mesh.positions[v], mesh.positions[t[(k + 1) % 3]]),
+                                            nmesh::distance(mesh.positions[v], mesh.positions[t[(k + 2) % 3]])});
+                                       return true;
+                                   }
+                           return false;
+                       }),
+        mesh.triangles.end());
     EvalOptions o;
     o.surface_samples = 50000;
     const QualityReport r = nmesh::evaluate(points, mesh, o);

@@ -3,7 +3,6 @@
 // for queries near and far from the data.
 #include <doctest/doctest.h>
 
-
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -40,28 +39,24 @@ NearestPoint brute_force_nearest(const std::vector<Vec3>& points, const Vec3& q)
 }
 
 // Checks every query against the brute force; returns the number of mismatches.
-int count_mismatches(const PointGrid& grid, const std::vector<Vec3>& points,
-                     const std::vector<Vec3>& queries) {
+int count_mismatches(const PointGrid& grid, const std::vector<Vec3>& points, const std::vector<Vec3>& queries) {
     int bad = 0;
     for (const Vec3& q : queries) {
         const NearestPoint want = brute_force_nearest(points, q);
         const NearestPoint got = grid.find_nearest(q);
         if (got.index != want.index || got.squared_distance != want.squared_distance) {
             if (bad < 5)
-                MESSAGE("query (" << q.x << ", " << q.y << ", " << q.z << "): got " << got.index
-                                  << " at " << got.squared_distance << ", want " << want.index
-                                  << " at " << want.squared_distance);
+                MESSAGE("query (" << q.x << ", " << q.y << ", " << q.z << "): got " << got.index << " at "
+                                  << got.squared_distance << ", want " << want.index << " at "
+                                  << want.squared_distance);
             ++bad;
         }
-        if (grid.nearest(q) != got.index || grid.nearest_squared_distance(q) != got.squared_distance)
-            ++bad;
+        if (grid.nearest(q) != got.index || grid.nearest_squared_distance(q) != got.squared_distance) ++bad;
     }
     return bad;
 }
 
-float uniform(std::mt19937& rng, float lo, float hi) {
-    return std::uniform_real_distribution<float>(lo, hi)(rng);
-}
+float uniform(std::mt19937& rng, float lo, float hi) { return std::uniform_real_distribution<float>(lo, hi)(rng); }
 
 Vec3 random_in_box(std::mt19937& rng, const Vec3& lo, const Vec3& hi) {
     return {uniform(rng, lo.x, hi.x), uniform(rng, lo.y, hi.y), uniform(rng, lo.z, hi.z)};
@@ -89,12 +84,24 @@ std::vector<Vec3> mixed_queries(const std::vector<Vec3>& points, std::mt19937& r
     std::uniform_int_distribution<std::size_t> pick(0, points.size() - 1);
     for (int i = 0; i < count; ++i) {
         switch (i % 6) {
-            case 0: q.push_back(points[pick(rng)]); break;
-            case 1: q.push_back(points[pick(rng)] + random_unit_vector(rng) * (0.01f * diag)); break;
-            case 2: q.push_back(random_in_box(rng, lo, hi)); break;
-            case 3: q.push_back(mid + random_unit_vector(rng) * (10.0f * diag)); break;
-            case 4: q.push_back(mid + random_unit_vector(rng) * (1000.0f * diag)); break;
-            default: q.push_back(random_unit_vector(rng) * 1e6f); break;
+            case 0:
+                q.push_back(points[pick(rng)]);
+                break;
+            case 1:
+                q.push_back(points[pick(rng)] + random_unit_vector(rng) * (0.01f * diag));
+                break;
+            case 2:
+                q.push_back(random_in_box(rng, lo, hi));
+                break;
+            case 3:
+                q.push_back(mid + random_unit_vector(rng) * (10.0f * diag));
+                break;
+            case 4:
+                q.push_back(mid + random_unit_vector(rng) * (1000.0f * diag));
+                break;
+            default:
+                q.push_back(random_unit_vector(rng) * 1e6f);
+                break;
         }
     }
     return q;
@@ -175,8 +182,7 @@ TEST_CASE("PointGrid breaks ties by the smaller index") {
         std::mt19937 rng(5);
         std::vector<Vec3> queries;
         std::uniform_int_distribution<int> half(-3, 25);
-        for (int i = 0; i < 800; ++i)
-            queries.push_back({half(rng) * 0.5f, half(rng) * 0.5f, half(rng) * 0.5f});
+        for (int i = 0; i < 800; ++i) queries.push_back({half(rng) * 0.5f, half(rng) * 0.5f, half(rng) * 0.5f});
         const PointGrid grid(points);
         CHECK(count_mismatches(grid, points, queries) == 0);
         // (0.5, 0.5, 0.5) is equidistant from the 8 corners of the first cube; (0,0,0) is index 0.
@@ -236,8 +242,7 @@ TEST_CASE("PointGrid matches brute force on the bunny scan, within its memory bu
     std::map<std::array<float, 3>, std::uint32_t> first;
     for (std::uint32_t i = 0; i < points.size(); ++i) first.emplace(key(points[i]), i);
     int wrong = 0;
-    for (std::uint32_t i = 0; i < points.size(); ++i)
-        wrong += grid.nearest(points[i]) != first.at(key(points[i]));
+    for (std::uint32_t i = 0; i < points.size(); ++i) wrong += grid.nearest(points[i]) != first.at(key(points[i]));
     CHECK(wrong == 0);
 
     // At most 8 bytes per point on top of the sorted copy of the points.

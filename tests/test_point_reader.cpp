@@ -2,7 +2,6 @@
 // PLY encoding and numeric type, the text formats, and every error the readers report.
 #include <doctest/doctest.h>
 
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -80,9 +79,12 @@ bool host_little_endian() {
 void append_value(std::string& out, const std::string& encoding, const std::string& type, double v) {
     if (encoding == "ascii") {
         char text[64];
-        if (type == "float" || type == "float32") std::snprintf(text, sizeof text, "%.9g", v);
-        else if (type == "double" || type == "float64") std::snprintf(text, sizeof text, "%.17g", v);
-        else std::snprintf(text, sizeof text, "%lld", static_cast<long long>(v));
+        if (type == "float" || type == "float32")
+            std::snprintf(text, sizeof text, "%.9g", v);
+        else if (type == "double" || type == "float64")
+            std::snprintf(text, sizeof text, "%.17g", v);
+        else
+            std::snprintf(text, sizeof text, "%lld", static_cast<long long>(v));
         if (!out.empty() && out.back() != '\n') out += ' ';
         out += text;
         return;
@@ -93,15 +95,24 @@ void append_value(std::string& out, const std::string& encoding, const std::stri
         n = sizeof x;
         std::memcpy(bytes, &x, n);
     };
-    if (type == "char" || type == "int8") put(static_cast<std::int8_t>(v));
-    else if (type == "uchar" || type == "uint8") put(static_cast<std::uint8_t>(v));
-    else if (type == "short" || type == "int16") put(static_cast<std::int16_t>(v));
-    else if (type == "ushort" || type == "uint16") put(static_cast<std::uint16_t>(v));
-    else if (type == "int" || type == "int32") put(static_cast<std::int32_t>(v));
-    else if (type == "uint" || type == "uint32") put(static_cast<std::uint32_t>(v));
-    else if (type == "float" || type == "float32") put(static_cast<float>(v));
-    else if (type == "double" || type == "float64") put(v);
-    else FAIL("test writer: unknown type " << type);
+    if (type == "char" || type == "int8")
+        put(static_cast<std::int8_t>(v));
+    else if (type == "uchar" || type == "uint8")
+        put(static_cast<std::uint8_t>(v));
+    else if (type == "short" || type == "int16")
+        put(static_cast<std::int16_t>(v));
+    else if (type == "ushort" || type == "uint16")
+        put(static_cast<std::uint16_t>(v));
+    else if (type == "int" || type == "int32")
+        put(static_cast<std::int32_t>(v));
+    else if (type == "uint" || type == "uint32")
+        put(static_cast<std::uint32_t>(v));
+    else if (type == "float" || type == "float32")
+        put(static_cast<float>(v));
+    else if (type == "double" || type == "float64")
+        put(v);
+    else
+        FAIL("test writer: unknown type " << type);
     if ((encoding == "binary_big_endian") == host_little_endian()) std::reverse(bytes, bytes + n);
     out.append(reinterpret_cast<const char*>(bytes), n);
 }
@@ -268,15 +279,13 @@ TEST_CASE("PLY: x, y, z of every numeric type and alias, in every encoding") {
 
 TEST_CASE("PLY: x, y, z of different types in one record") {
     TempDir dir;
-    PlyElem v{"vertex",
-              {{"uchar", "x", ""}, {"double", "y", ""}, {"short", "z", ""}},
-              {{200, 0.125, -300}, {1, -2.5, 7}}};
+    PlyElem v{
+        "vertex", {{"uchar", "x", ""}, {"double", "y", ""}, {"short", "z", ""}}, {{200, 0.125, -300}, {1, -2.5, 7}}};
     const std::vector<Vec3> expected = {{200, 0.125f, -300}, {1, -2.5f, 7}};
     for (const char* encoding : kEncodings) {
         CAPTURE(encoding);
-        CHECK(same_points(
-            nmesh::read_points(dir.file(std::string(encoding) + ".ply", make_ply(encoding, {v}))).points,
-            expected));
+        CHECK(same_points(nmesh::read_points(dir.file(std::string(encoding) + ".ply", make_ply(encoding, {v}))).points,
+                          expected));
     }
 }
 
@@ -296,17 +305,16 @@ TEST_CASE("PLY: comments, other elements (also before vertex), lists and extra p
                          {{2, 7, 8, 0.5, 1.5, 2.5, 255, 3.5, 0},
                           {0, -1, -4.25, 5, 0, 6, 1, 30000},
                           {1, 9, 0, 1e-3, 2e-3, 3e-3, 4, 3, 1, 2, 3}}};
-    const PlyElem face{"face",
-                       {{"int", "vertex_indices", "uchar"}, {"int", "flags", ""}},
-                       {{3, 0, 1, 2, 7}, {4, 0, 1, 2, 0, 9}}};
+    const PlyElem face{
+        "face", {{"int", "vertex_indices", "uchar"}, {"int", "flags", ""}}, {{3, 0, 1, 2, 7}, {4, 0, 1, 2, 0, 9}}};
     const PlyElem custom{"custom", {{"ushort", "q", ""}}, {{65535}}};
     const std::vector<Vec3> expected = {{1.5f, 2.5f, 3.5f}, {-4.25f, 5, 6}, {1e-3f, 2e-3f, 4}};
     const std::string comments = "comment made by hand\nobj_info also ignored\ncomment element vertex 99\n";
     TempDir dir;
     for (const char* encoding : kEncodings) {
         CAPTURE(encoding);
-        const std::string path = dir.file(std::string(encoding) + ".ply",
-                                          make_ply(encoding, {camera, vertex, face, custom}, comments));
+        const std::string path =
+            dir.file(std::string(encoding) + ".ply", make_ply(encoding, {camera, vertex, face, custom}, comments));
         CHECK(same_points(nmesh::read_points(path).points, expected));
 
         const nmesh::FileInfo info = nmesh::inspect_file(path);
@@ -338,13 +346,11 @@ TEST_CASE("binary PLY: bodies larger than the read buffer give the same points i
     for (const char* encoding : {"binary_little_endian", "binary_big_endian"}) {
         CAPTURE(encoding);
         CHECK(same_points(
-            nmesh::read_points(dir.file(std::string(encoding) + ".ply", make_ply(encoding, {colored})))
-                .points,
+            nmesh::read_points(dir.file(std::string(encoding) + ".ply", make_ply(encoding, {colored}))).points,
             points));
-        CHECK(same_points(nmesh::read_points(dir.file(std::string(encoding) + "_xyz.ply",
-                                                      xyz_ply(encoding, "float", points)))
-                              .points,
-                          points));
+        CHECK(same_points(
+            nmesh::read_points(dir.file(std::string(encoding) + "_xyz.ply", xyz_ply(encoding, "float", points))).points,
+            points));
     }
 }
 
@@ -366,8 +372,7 @@ TEST_CASE("non-finite coordinates are dropped and counted, in every format") {
         CAPTURE(encoding);
         nmesh::PointReadReport report;
         CHECK(same_points(
-            nmesh::read_points(dir.file(std::string(encoding) + ".ply", xyz_ply(encoding, "float", with_bad)),
-                               &report)
+            nmesh::read_points(dir.file(std::string(encoding) + ".ply", xyz_ply(encoding, "float", with_bad)), &report)
                 .points,
             good));
         CHECK(report.non_finite_dropped == 3);
@@ -377,9 +382,9 @@ TEST_CASE("non-finite coordinates are dropped and counted, in every format") {
     nmesh::PointReadReport report;
     const std::string huge = dir.file(
         "huge.ply",
-        make_ply("binary_little_endian", {{"vertex",
-                                           {{"double", "x", ""}, {"double", "y", ""}, {"double", "z", ""}},
-                                           {{1e300, 0, 0}, {1, 2, 3}}}}));
+        make_ply(
+            "binary_little_endian",
+            {{"vertex", {{"double", "x", ""}, {"double", "y", ""}, {"double", "z", ""}}, {{1e300, 0, 0}, {1, 2, 3}}}}));
     CHECK(same_points(nmesh::read_points(huge, &report).points, {{1, 2, 3}}));
     CHECK(report.non_finite_dropped == 1);
 
@@ -411,8 +416,8 @@ TEST_CASE("XYZ text: separators, comments, blank lines, extra columns, CRLF, '+'
         "+10, -11 ,1.2e1   # trailing comment\n"
         "  -1.5e-3 .5 -0\n"
         "13 14 15";  // no final line break
-    const std::vector<Vec3> expected = {
-        {1, 2, 3}, {4, 5, 6}, {7, 8, 9}, {10, -11, 12}, {-1.5e-3f, 0.5f, -0.0f}, {13, 14, 15}};
+    const std::vector<Vec3> expected = {{1, 2, 3},   {4, 5, 6}, {7, 8, 9}, {10, -11, 12}, {-1.5e-3f, 0.5f, -0.0f},
+                                        {13, 14, 15}};
     TempDir dir;
     for (const char* name : {"a.xyz", "a.txt", "a.csv", "a.pts", "A.XYZ", "a.Txt"}) {
         CAPTURE(name);
@@ -440,9 +445,9 @@ TEST_CASE("text numbers are correctly rounded to float: random decimals against 
     // is the reference. Covers 1 to 20 digits, exponents beyond +-22, values exactly halfway
     // between two floats (ties to even), the float range ends, subnormals and overflow.
     std::vector<std::string> tokens = {
-        "16777217", "16777219", "1.6777217e7", "-16777217", "3.4028235e38", "3.40282357e38", "3.4028236e38",
-        "1e39", "1.17549435e-38", "1.1754942e-38", "1e-40", "1e-50", "0.000000", "-0",
-        "123456789012345678901", "0.1", "9007199254740993", "9007199254740992e-22",
+        "16777217", "16777219", "1.6777217e7", "-16777217", "3.4028235e38", "3.40282357e38", "3.4028236e38", "1e39",
+        "1.17549435e-38", "1.1754942e-38", "1e-40", "1e-50", "0.000000", "-0", "123456789012345678901", "0.1",
+        "9007199254740993", "9007199254740992e-22",
         // decimals whose nearest double lies exactly halfway
         // between two floats, though they do not
         "5.541686732613016e-05", "1.698617398738861e+00", "7.694852054119110e-01", "6.249837344512343e-03"};
@@ -494,8 +499,7 @@ TEST_CASE("OBJ: 'v' lines are the points; everything else is ignored") {
         "# comment\nmtllib x.mtl\no thing\nv 1 2 3\nvn 0 0 1\nvt 0.5 0.5\nv 4 5 6 1.0\n"
         "v 7 8 9 0.1 0.2 0.3\ng group\nusemtl m\ns off\nf 1 2 3\nf 1/1/1 2/1/1 3/1/1\nl 1 2\n";
     nmesh::PointReadReport report;
-    CHECK(same_points(nmesh::read_points(dir.file("m.obj", obj), &report).points,
-                      {{1, 2, 3}, {4, 5, 6}, {7, 8, 9}}));
+    CHECK(same_points(nmesh::read_points(dir.file("m.obj", obj), &report).points, {{1, 2, 3}, {4, 5, 6}, {7, 8, 9}}));
     CHECK(report.format == "obj");
     const nmesh::FileInfo info = nmesh::inspect_file(dir.file("m.obj", obj));
     CHECK(info.faces == 2);
@@ -545,9 +549,8 @@ TEST_CASE("error: PLY header problems") {
     }
     SUBCASE("not a PLY file") { check_error(dir.file("h.ply", "plyx\n"), {"not a PLY file"}); }
     SUBCASE("unknown format") {
-        check_error(
-            dir.file("h.ply", "ply\nformat binary_middle_endian 1.0\n" + vertex3 + "end_header\n1 2 3\n"),
-            {"line 2", "unknown PLY format 'binary_middle_endian'"});
+        check_error(dir.file("h.ply", "ply\nformat binary_middle_endian 1.0\n" + vertex3 + "end_header\n1 2 3\n"),
+                    {"line 2", "unknown PLY format 'binary_middle_endian'"});
     }
     SUBCASE("unknown version") {
         check_error(dir.file("h.ply", "ply\nformat ascii 2.0\n" + vertex3 + "end_header\n1 2 3\n"),
@@ -567,9 +570,8 @@ TEST_CASE("error: PLY header problems") {
                     {"line 7", "unknown PLY header keyword 'elephant'"});
     }
     SUBCASE("property before any element") {
-        check_error(
-            dir.file("h.ply", "ply\nformat ascii 1.0\nproperty float x\n" + vertex3 + "end_header\n1 2 3\n"),
-            {"line 3", "property line before any element"});
+        check_error(dir.file("h.ply", "ply\nformat ascii 1.0\nproperty float x\n" + vertex3 + "end_header\n1 2 3\n"),
+                    {"line 3", "property line before any element"});
     }
     SUBCASE("bad element count") {
         check_error(dir.file("h.ply", "ply\nformat ascii 1.0\nelement vertex -1\nend_header\n"),
@@ -577,15 +579,13 @@ TEST_CASE("error: PLY header problems") {
     }
     SUBCASE("a float list count type") {
         check_error(
-            dir.file("h.ply",
-                     "ply\nformat ascii 1.0\n" + vertex3 +
-                         "element face 0\nproperty list float int vertex_indices\nend_header\n1 2 3\n"),
+            dir.file("h.ply", "ply\nformat ascii 1.0\n" + vertex3 +
+                                  "element face 0\nproperty list float int vertex_indices\nend_header\n1 2 3\n"),
             {"line 8", "list count type 'float' is not an integer type"});
     }
     SUBCASE("no vertex element") {
-        check_error(
-            dir.file("h.ply", "ply\nformat ascii 1.0\nelement point 1\nproperty float x\nend_header\n1\n"),
-            {"no 'vertex' element"});
+        check_error(dir.file("h.ply", "ply\nformat ascii 1.0\nelement point 1\nproperty float x\nend_header\n1\n"),
+                    {"no 'vertex' element"});
     }
     SUBCASE("missing x, y or z") {
         check_error(dir.file("h.ply",
@@ -604,21 +604,19 @@ TEST_CASE("error: PLY header problems") {
 TEST_CASE("error: a header declaring billions of records in a tiny file is refused before allocating") {
     TempDir dir;
     const std::string props = "property float x\nproperty float y\nproperty float z\nend_header\n";
-    check_error(dir.file("b.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 3000000000\n" +
-                                      props + std::string(24, '\0')),
-                {"truncated binary body", "3000000000 'vertex'", "needing at least 36000000000 bytes",
-                 "only 24 bytes"});
+    check_error(
+        dir.file("b.ply",
+                 "ply\nformat binary_little_endian 1.0\nelement vertex 3000000000\n" + props + std::string(24, '\0')),
+        {"truncated binary body", "3000000000 'vertex'", "needing at least 36000000000 bytes", "only 24 bytes"});
     check_error(dir.file("a.ply", "ply\nformat ascii 1.0\nelement vertex 3000000000\n" + props + "1 2 3\n"),
                 {"3000000000 'vertex'", "needing at least"});
     // Counts whose byte total overflows 64 bits.
     check_error(
-        dir.file("o.ply",
-                 "ply\nformat binary_little_endian 1.0\nelement vertex 18446744073709551615\n" + props + "x"),
+        dir.file("o.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 18446744073709551615\n" + props + "x"),
         {"18446744073709551615 'vertex'", "needing at least"});
     // A list count far beyond the file.
-    PlyElem v{"vertex",
-              {{"float", "x", ""}, {"float", "y", ""}, {"float", "z", ""}, {"float", "l", "uint"}},
-              {{1, 2, 3, 0}}};
+    PlyElem v{
+        "vertex", {{"float", "x", ""}, {"float", "y", ""}, {"float", "z", ""}, {"float", "l", "uint"}}, {{1, 2, 3, 0}}};
     std::string ply = make_ply("binary_little_endian", {v});
     const std::string huge_count = "\xff\xff\xff\x7f";
     ply.replace(ply.size() - 4, 4, huge_count);
@@ -632,14 +630,12 @@ TEST_CASE("error: truncated binary body, and data after the last record") {
     REQUIRE(bunny.size() == 431483);
     check_error(dir.file("cut.ply", bunny.substr(0, bunny.size() - 5)),
                 {"byte offset", "truncated binary body", "35947 'vertex'"});
-    check_error(dir.file("long.ply", bunny + "junk"),
-                {"byte offset 431483", "4 bytes of data after the last record"});
+    check_error(dir.file("long.ply", bunny + "junk"), {"byte offset 431483", "4 bytes of data after the last record"});
     CHECK(nmesh::read_points(dir.file("newline.ply", bunny + "\n")).size() == kBunnyPoints);
 
     // Cut inside a list-bearing element: found while walking the records.
-    const PlyElem vertex{"vertex",
-                         {{"float", "x", ""}, {"float", "y", ""}, {"float", "z", ""}},
-                         {{1, 2, 3}, {4, 5, 6}, {7, 8, 9}}};
+    const PlyElem vertex{
+        "vertex", {{"float", "x", ""}, {"float", "y", ""}, {"float", "z", ""}}, {{1, 2, 3}, {4, 5, 6}, {7, 8, 9}}};
     const PlyElem face{"face", {{"int", "vertex_indices", "uchar"}}, {{3, 0, 1, 2}, {3, 0, 2, 1}}};
     const std::string mesh = make_ply("binary_big_endian", {vertex, face});
     check_error(dir.file("cutface.ply", mesh.substr(0, mesh.size() - 3)),
@@ -659,23 +655,19 @@ TEST_CASE("error: ASCII PLY with fewer or more lines than the header declares") 
                 {"line 9", "'vertex' record 1 has fewer values than its 3 properties"});
     check_error(dir.file("long.ply", header + "1 2 3\n4 5 6 6.5\n7 8 9\n"),
                 {"line 9", "'vertex' record 1 has more values than its 3 properties"});
-    check_error(dir.file("word.ply", header + "1 2 3\n4 abc 6\n7 8 9\n"),
-                {"line 9", "'abc' is not a number"});
+    check_error(dir.file("word.ply", header + "1 2 3\n4 abc 6\n7 8 9\n"), {"line 9", "'abc' is not a number"});
 }
 
 TEST_CASE("error: binary list count that is negative") {
     TempDir dir;
-    const PlyElem v{"vertex",
-                    {{"float", "l", "int"}, {"float", "x", ""}, {"float", "y", ""}, {"float", "z", ""}},
-                    {{-2, 1, 2, 3}}};
-    check_error(dir.file("neg.ply", make_ply("binary_little_endian", {v})),
-                {"byte offset", "negative list count -2"});
+    const PlyElem v{
+        "vertex", {{"float", "l", "int"}, {"float", "x", ""}, {"float", "y", ""}, {"float", "z", ""}}, {{-2, 1, 2, 3}}};
+    check_error(dir.file("neg.ply", make_ply("binary_little_endian", {v})), {"byte offset", "negative list count -2"});
 }
 
 TEST_CASE("error: XYZ text problems name the line") {
     TempDir dir;
-    check_error(dir.file("two.xyz", "1 2 3\n4 5 6\n7 8\n"),
-                {"line 3", "expected 3 numbers (x y z), found 2"});
+    check_error(dir.file("two.xyz", "1 2 3\n4 5 6\n7 8\n"), {"line 3", "expected 3 numbers (x y z), found 2"});
     check_error(dir.file("word.xyz", "# c\n1 2 3\n4 five 6\n"), {"line 3", "'five' is not a number"});
     check_error(dir.file("half.xyz", "1 2 3x\n"), {"line 1", "'3x' is not a number"});
     check_error(dir.file("csvheader.csv", "x,y,z\n1,2,3\n"), {"line 1", "'x' is not a number"});
@@ -692,13 +684,10 @@ TEST_CASE("error: OBJ and OFF problems name the line") {
     TempDir dir;
     check_error(dir.file("v.obj", "v 1 2 3\nv 1 2\n"), {"line 2", "a 'v' line needs 3 coordinates, found 2"});
     check_error(dir.file("w.obj", "v 1 2 3\nv 1 two 3\n"), {"line 2", "'two' is not a number"});
-    check_error(dir.file("few.off", "OFF\n3 0 0\n1.0 2.0 3.0\n4.0 5.0 6.0\n"),
-                {"ends after 2 of 3 vertex lines"});
-    check_error(dir.file("many.off", "OFF\n1 0 0\n1 2 3\n4 5 6\n"),
-                {"line 4", "more lines than the header declares"});
+    check_error(dir.file("few.off", "OFF\n3 0 0\n1.0 2.0 3.0\n4.0 5.0 6.0\n"), {"ends after 2 of 3 vertex lines"});
+    check_error(dir.file("many.off", "OFF\n1 0 0\n1 2 3\n4 5 6\n"), {"line 4", "more lines than the header declares"});
     check_error(dir.file("bin.off", "OFF BINARY\n"), {"line 1", "binary OFF is not supported"});
     check_error(dir.file("head.off", "OF\n1 0 0\n1 2 3\n"), {"line 1", "not an OFF file"});
     check_error(dir.file("count.off", "OFF\n1 x 0\n1 2 3\n"), {"line 2", "bad face count 'x'"});
-    check_error(dir.file("huge.off", "OFF\n4000000000 0 0\n1 2 3\n"),
-                {"4000000000 vertices", "needing at least"});
+    check_error(dir.file("huge.off", "OFF\n4000000000 0 0\n1 2 3\n"), {"4000000000 vertices", "needing at least"});
 }

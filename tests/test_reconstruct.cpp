@@ -17,8 +17,8 @@
 #include "nmesh/reconstruct.h"
 
 using namespace nmesh;
-using nmesh::test::require_closed_manifold;
 using nmesh::test::bundled_bunny;
+using nmesh::test::require_closed_manifold;
 using nmesh::test::sphere_cloud;
 
 TEST_CASE("a sphere sample reconstructs to a sphere") {
@@ -42,7 +42,7 @@ TEST_CASE("the engine keeps mesh, grid, activity index and ring cache consistent
     Parameters p;
     p.target_vertices = 400;
     p.cvs = 20;  // many splits, and collapses from the start
-    p.cec = 3;  // growth needs Cec / Cvs above the share of vertices left idle, about e^-Cec
+    p.cec = 3;   // growth needs Cec / Cvs above the share of vertices left idle, about e^-Cec
     std::vector<Vec3> pts = cloud.points;
     const BoundingBox box = bounding_box(pts);
     NeuralMesh engine(pts, box, p);
@@ -73,7 +73,7 @@ TEST_CASE("steps 2-4 move the nearest vertex by eq. (2) and its ring by eq. (3)-
     const PointCloud cloud = sphere_cloud(5000, 1.0f, {0.5f, -1.0f, 2.0f}, 11);
     Parameters p;
     p.target_vertices = 1000;
-    p.alpha_n = 0.2;  // large steps, so that an error in the smoothing cannot hide in rounding
+    p.alpha_n = 0.2;       // large steps, so that an error in the smoothing cannot hide in rounding
     p.fold_guard = false;  // eq. (2) as the paper has it (the guard has its own tests below)
     // Rings from the ring cache, or (limit 4) walked on the half-edge mesh for most vertices.
     for (const std::uint32_t limit : {RingCache::kCapacity, 4u}) {
@@ -232,7 +232,8 @@ TEST_CASE("looking one sample ahead finds the same winners: the same mesh, bit f
             p.cvs = 20;
             p.cec = 3;
         }
-        NeuralMesh ahead(cloud.points, bounding_box(cloud.points), p), plain(cloud.points, bounding_box(cloud.points), p);
+        NeuralMesh ahead(cloud.points, bounding_box(cloud.points), p),
+            plain(cloud.points, bounding_box(cloud.points), p);
         ahead.look_ahead_from(4);
         plain.look_ahead_from(std::numeric_limits<std::uint32_t>::max());
         if (limit != 0) {
@@ -389,7 +390,7 @@ TEST_CASE("the result does not depend on the cloud's units") {
     const auto [mean_m, worst_m] = deviation(base.mesh, {0.01f, 0.02f, -0.03f}, 0.05f);
     const auto [mean_mm, worst_mm] = deviation(in_mm.mesh, {10.0f, 20.0f, -30.0f}, 50.0f);
     INFO("relative deviation from the sphere, m: mean " << mean_m << " max " << worst_m << "; mm: mean " << mean_mm
-                                                         << " max " << worst_mm);
+                                                        << " max " << worst_mm);
     CHECK(mean_mm <= 1.5 * mean_m);
     CHECK(worst_mm <= 1.5 * worst_m);
     CHECK(mean_m <= 1.5 * mean_mm);

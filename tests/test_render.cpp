@@ -73,14 +73,15 @@ Bytes inflate(const Bytes& z, InflateStats* stats = nullptr) {
                                      31, 35, 43, 51, 59, 67, 83, 99, 115, 131, 163, 195, 227, 258};
     static const int kLenExtra[29] = {0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2,
                                       2, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 0};
-    static const int kDistBase[30] = {1,   2,   3,   4,   5,   7,    9,    13,   17,   25,   33,   49,   65,    97,    129,
-                                      193, 257, 385, 513, 769, 1025, 1537, 2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577};
-    static const int kDistExtra[30] = {0, 0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6,
+    static const int kDistBase[30] = {1,    2,    3,    4,    5,    7,    9,    13,    17,    25,
+                                      33,   49,   65,   97,   129,  193,  257,  385,   513,   769,
+                                      1025, 1537, 2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577};
+    static const int kDistExtra[30] = {0, 0, 0, 0, 1, 1, 2, 2,  3,  3,  4,  4,  5,  5,  6,
                                        6, 7, 7, 8, 8, 9, 9, 10, 10, 11, 11, 12, 12, 13, 13};
     REQUIRE(z.size() >= 6);
-    REQUIRE((z[0] & 0x0F) == 8);              // deflate
-    REQUIRE((z[0] * 256 + z[1]) % 31 == 0);   // header check
-    REQUIRE((z[1] & 0x20) == 0);              // no preset dictionary
+    REQUIRE((z[0] & 0x0F) == 8);             // deflate
+    REQUIRE((z[0] * 256 + z[1]) % 31 == 0);  // header check
+    REQUIRE((z[1] & 0x20) == 0);             // no preset dictionary
     const Bytes body(z.begin() + 2, z.end() - 4);
     BitReader in{body};
     Bytes out;
@@ -105,9 +106,12 @@ Bytes inflate(const Bytes& z, InflateStats* stats = nullptr) {
                 sym = 256 + int(code);
             } else {
                 code = (code << 1) | in.bit();
-                if (code >= 0x30 && code <= 0xBF) sym = int(code) - 0x30;
-                else if (code >= 0xC0 && code <= 0xC7) sym = 280 + int(code) - 0xC0;
-                else sym = 144 + int(((code << 1) | in.bit()) - 0x190);
+                if (code >= 0x30 && code <= 0xBF)
+                    sym = int(code) - 0x30;
+                else if (code >= 0xC0 && code <= 0xC7)
+                    sym = 280 + int(code) - 0xC0;
+                else
+                    sym = 144 + int(((code << 1) | in.bit()) - 0x190);
             }
             if (sym < 256) {
                 out.push_back(std::uint8_t(sym));
@@ -209,15 +213,22 @@ Decoded decode_png(const Bytes& png) {
             const int a = i >= 3 ? row[i - 3] : 0, b = up ? up[i] : 0, c = (up && i >= 3) ? up[i - 3] : 0;
             int pred = 0;
             switch (filter) {
-                case 1: pred = a; break;
-                case 2: pred = b; break;
-                case 3: pred = (a + b) / 2; break;
+                case 1:
+                    pred = a;
+                    break;
+                case 2:
+                    pred = b;
+                    break;
+                case 3:
+                    pred = (a + b) / 2;
+                    break;
                 case 4: {
                     const int p = a + b - c, pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
                     pred = (pa <= pb && pa <= pc) ? a : (pb <= pc ? b : c);
                     break;
                 }
-                default: break;
+                default:
+                    break;
             }
             row[i] = std::uint8_t(src[i] + pred);
         }
@@ -389,14 +400,34 @@ TEST_CASE("encode_png round-trips pixels exactly through an independent decoder"
         std::function<Rgb(int, int)> pixel;
     };
     const std::vector<Case> cases = {
-        {"one pixel", 1, 1, [](int, int) { return Rgb{12, 200, 7}; }},
-        {"odd sizes, random", 7, 5, [&](int, int) { return Rgb{std::uint8_t(rng()), std::uint8_t(rng()), std::uint8_t(rng())}; }},
-        {"gradients", 301, 173, [](int x, int y) { return Rgb{std::uint8_t(x), std::uint8_t(y * 3), std::uint8_t(x + y)}; }},
-        {"constant", 400, 300, [](int, int) { return Rgb{255, 255, 255}; }},
+        {"one pixel", 1, 1,
+         [](int, int) {
+             return Rgb{12, 200, 7};
+         }},
+        {"odd sizes, random", 7, 5,
+         [&](int, int) {
+             return Rgb{std::uint8_t(rng()), std::uint8_t(rng()), std::uint8_t(rng())};
+         }},
+        {"gradients", 301, 173,
+         [](int x, int y) {
+             return Rgb{std::uint8_t(x), std::uint8_t(y * 3), std::uint8_t(x + y)};
+         }},
+        {"constant", 400, 300,
+         [](int, int) {
+             return Rgb{255, 255, 255};
+         }},
         {"stripes and blocks", 257, 129,
-         [](int x, int y) { return ((x / 8 + y / 5) % 3) ? Rgb{std::uint8_t(x % 7 * 30), 9, 200} : Rgb{0, 0, 0}; }},
-        {"one row", 600, 1, [](int x, int) { return Rgb{std::uint8_t(x * x), std::uint8_t(x / 3), 1}; }},
-        {"one column", 1, 600, [](int, int y) { return Rgb{std::uint8_t(y), std::uint8_t(y % 2 * 255), 3}; }},
+         [](int x, int y) {
+             return ((x / 8 + y / 5) % 3) ? Rgb{std::uint8_t(x % 7 * 30), 9, 200} : Rgb{0, 0, 0};
+         }},
+        {"one row", 600, 1,
+         [](int x, int) {
+             return Rgb{std::uint8_t(x * x), std::uint8_t(x / 3), 1};
+         }},
+        {"one column", 1, 600,
+         [](int, int y) {
+             return Rgb{std::uint8_t(y), std::uint8_t(y % 2 * 255), 3};
+         }},
     };
     for (const Case& c : cases) {
         CAPTURE(c.name);
@@ -443,8 +474,8 @@ TEST_CASE("zlib_compress uses every length and distance code correctly") {
     // those around its source, so the match found is exactly the planted one.
     static const int kLengths[] = {3,  4,  5,  6,  7,  8,  9,  10, 11,  13,  15,  17,  19,  23, 27,
                                    31, 35, 43, 51, 59, 67, 83, 99, 115, 131, 163, 195, 227, 258};
-    static const int kDistances[] = {1,    2,    3,    4,    5,    7,    9,    13,    17,    25,    33,
-                                     49,   65,   97,   129,  193,  257,  385,  513,   769,   1025,  1537,
+    static const int kDistances[] = {1,    2,    3,    4,    5,    7,     9,     13,    17,   25,   33,
+                                     49,   65,   97,   129,  193,  257,   385,   513,   769,  1025, 1537,
                                      2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577, 32768};
     std::mt19937 rng(11);
     const auto byte = [&] { return std::uint8_t(rng() % 144); };
@@ -479,8 +510,9 @@ TEST_CASE("encode_png refuses sizes that do not match the pixels") {
 
 TEST_CASE("write_png writes the encoded bytes, and nothing when it fails") {
     namespace fs = std::filesystem;
-    const fs::path dir = fs::temp_directory_path() /
-                         ("nmesh_render_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
+    const fs::path dir =
+        fs::temp_directory_path() /
+        ("nmesh_render_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
     fs::create_directories(dir);
     const Bytes rgb = {1, 2, 3, 4, 5, 6};
     const std::string path = (dir / "a.png").string();
@@ -577,8 +609,8 @@ TEST_CASE("triangles sharing edges leave no gaps") {
     for (int j = 0; j <= n; ++j)
         for (int i = 0; i <= n; ++i) {
             const bool inner = i > 0 && i < n && j > 0 && j < n;
-            m.positions.push_back({(i + (inner ? jitter(rng) : 0.0f)) / n * 2 - 1,
-                                   (j + (inner ? jitter(rng) : 0.0f)) / n * 2 - 1, 0.0f});
+            m.positions.push_back(
+                {(i + (inner ? jitter(rng) : 0.0f)) / n * 2 - 1, (j + (inner ? jitter(rng) : 0.0f)) / n * 2 - 1, 0.0f});
         }
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
@@ -615,8 +647,10 @@ TEST_CASE("the z-buffer shows the nearer surface whatever the triangle order") {
         o.vertex_values = &values;
         const Image img = nmesh::render(m, o);
         const Rgb centre = img.pixel(100, 100);
-        if (z > 0) CHECK(centre[0] > centre[2]);  // red: the small cube in front
-        else CHECK(centre[2] > centre[0]);        // blue: the big cube hides the small one
+        if (z > 0)
+            CHECK(centre[0] > centre[2]);  // red: the small cube in front
+        else
+            CHECK(centre[2] > centre[0]);  // blue: the big cube hides the small one
         std::reverse(m.triangles.begin(), m.triangles.end());
         CHECK(nmesh::render(m, o).rgb == img.rgb);
     }
@@ -757,7 +791,7 @@ TEST_CASE("the wireframe darkens the visible edges and nothing else") {
     CHECK(mismatches == 0);
     const double side = 2 * cam.scale;
     CHECK(on_diagonal > 0.95 * side);  // at least one strongly darkened pixel per row
-    CHECK(darkened > on_diagonal);      // and more along the square's sides
+    CHECK(darkened > on_diagonal);     // and more along the square's sides
     CHECK(covered_count(wire) == covered_count(plain));
 }
 
@@ -845,7 +879,7 @@ TEST_CASE("supersampling smooths the silhouette without moving it") {
             one_colors.insert(one.pixel(x, y));
             three_colors.insert(three.pixel(x, y));
         }
-    CHECK(one_colors.size() <= 5);   // at most four facets, and the background
+    CHECK(one_colors.size() <= 5);  // at most four facets, and the background
     CHECK(one_colors.size() >= 3);
     CHECK(three_colors.size() > 20);  // blends of 1 to 8 samples in 9
     // Coverage, weighted by how far each pixel is from the background, barely changes.

@@ -54,7 +54,8 @@ TEST_CASE("the cache holds each vertex's neighbours clockwise from its stored ha
     for (std::uint32_t v = 0; v < m.n_vertices(); ++v) {
         const std::vector<std::uint32_t> ring = walked_ring(m, Vertex(v));
         REQUIRE(cache.count(Vertex(v)) == ring.size());
-        CHECK(std::vector<std::uint32_t>(cache.neighbours(Vertex(v)), cache.neighbours(Vertex(v)) + ring.size()) == ring);
+        CHECK(std::vector<std::uint32_t>(cache.neighbours(Vertex(v)), cache.neighbours(Vertex(v)) + ring.size()) ==
+              ring);
     }
 }
 

@@ -302,7 +302,8 @@ TEST_CASE("long run: a mesh grown to 200,000 vertices stays a valid manifold all
         engine.iterate();
         if (engine.iteration() % check_period == 0) {
             const ManifoldCheck c = check_manifold(engine.mesh());
-            INFO("after " << engine.iteration() << " iterations, " << engine.mesh().n_vertices() << " vertices: " << c.error);
+            INFO("after " << engine.iteration() << " iterations, " << engine.mesh().n_vertices()
+                          << " vertices: " << c.error);
             REQUIRE(c.ok);
             ++checks;
         }
@@ -316,15 +317,17 @@ TEST_CASE("long run: a mesh grown to 200,000 vertices stays a valid manifold all
     double sum = 0.0, worst = 0.0;
     for (const Vec3& v : m.positions) {
         const double e = std::fabs(std::sqrt(double(v.x / 0.3f) * (v.x / 0.3f) + double(v.y / 0.2f) * (v.y / 0.2f) +
-                                             double(v.z / 0.15f) * (v.z / 0.15f)) - 1.0);
+                                             double(v.z / 0.15f) * (v.z / 0.15f)) -
+                                   1.0);
         sum += e;
         worst = std::max(worst, e);
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("long run: %u vertices, %llu iterations, %llu checks, %.1f s; relative deviation from the "
-                "ellipsoid mean %.2g max %.2g\n",
-                target, (unsigned long long)engine.iteration(), (unsigned long long)checks, seconds,
-                sum / double(m.positions.size()), worst);
+    std::printf(
+        "long run: %u vertices, %llu iterations, %llu checks, %.1f s; relative deviation from the "
+        "ellipsoid mean %.2g max %.2g\n",
+        target, (unsigned long long)engine.iteration(), (unsigned long long)checks, seconds,
+        sum / double(m.positions.size()), worst);
     // The small sanitizer run is too short to converge: its bounds only catch a broken run.
     CHECK(sum / double(m.positions.size()) < (kSanitized ? 0.1 : 0.01));
     CHECK(worst < (kSanitized ? 0.5 : 0.1));

@@ -667,7 +667,7 @@ TEST_CASE("triangle intersection: random segments against the exact reference") 
         const IPoint a = source(rng), b = source(rng), c = source(rng);
         if (reference_degenerate(a, b, c)) continue;
         const IPoint p = source(rng);
-        IPoint q = i % 10 == 0 ? p : source(rng);  // some single points
+        IPoint q = i % 10 == 0 ? p : source(rng);                            // some single points
         if (i % 10 == 1) q = {2 * a.x - p.x, 2 * a.y - p.y, 2 * a.z - p.z};  // through the corner a
         ++cases;
         const bool reference = reference_segment_meets_triangle(p, q, a, b, c);

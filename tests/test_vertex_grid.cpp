@@ -80,8 +80,7 @@ Vec3 random_point(Random& rng, Shape shape) {
             // Uniform on the sphere of radius 0.5 centred in the cube (Archimedes' projection).
             const double z = 2.0 * rng.uniform() - 1.0, phi = 2.0 * kPi * rng.uniform();
             const double r = std::sqrt(1.0 - z * z);
-            return {float(0.5 + 0.5 * r * std::cos(phi)), float(0.5 + 0.5 * r * std::sin(phi)),
-                    float(0.5 + 0.5 * z)};
+            return {float(0.5 + 0.5 * r * std::cos(phi)), float(0.5 + 0.5 * r * std::sin(phi)), float(0.5 + 0.5 * z)};
         }
         case Shape::clusters: {
             // Eight tight clusters at the cube's corners: most cells empty, neighbours far apart.
@@ -102,14 +101,11 @@ Vec3 random_query(Random& rng, Shape shape) {
     if (kind < 6) {
         const Vec3 p = random_point(rng, shape);
         const float j = 0.01f;
-        return p + Vec3{j * float(rng.uniform() - 0.5), j * float(rng.uniform() - 0.5),
-                        j * float(rng.uniform() - 0.5)};
+        return p + Vec3{j * float(rng.uniform() - 0.5), j * float(rng.uniform() - 0.5), j * float(rng.uniform() - 0.5)};
     }
-    if (kind < 8)
-        return {float(rng.uniform() * 3 - 1), float(rng.uniform() * 3 - 1), float(rng.uniform() * 3 - 1)};
+    if (kind < 8) return {float(rng.uniform() * 3 - 1), float(rng.uniform() * 3 - 1), float(rng.uniform() * 3 - 1)};
     const float far = kind == 8 ? 20.0f : 1000.0f;
-    return {far * float(rng.uniform() - 0.5), far * float(rng.uniform() - 0.5),
-            far * float(rng.uniform() - 0.5)};
+    return {far * float(rng.uniform() - 0.5), far * float(rng.uniform() - 0.5), far * float(rng.uniform() - 0.5)};
 }
 
 void check_same_state(const VertexGrid& grid, const Reference& ref, std::uint32_t id) {
@@ -160,8 +156,7 @@ void run_random_sequence(Shape shape, std::uint64_t seed, int steps, std::uint32
             const std::uint32_t expected = ref.nearest(q);
             const std::uint32_t got = grid.nearest(q);
             if (got != expected) {
-                INFO("query " << q.x << " " << q.y << " " << q.z << " step " << step << " size "
-                              << ref.ids.size());
+                INFO("query " << q.x << " " << q.y << " " << q.z << " step " << step << " size " << ref.ids.size());
                 REQUIRE(got == expected);
             }
         }
@@ -278,8 +273,7 @@ TEST_CASE("VertexGrid: vertices and queries far outside the domain, still exact"
         // Their cells are far apart: the shells would have to cross most of the grid.
         VertexGrid grid(unit_cube());
         Reference ref;
-        const Vec3 points[] = {
-            {0.5f, 0.5f, 0.5f}, {1e5f, 0.0f, 0.0f}, {-3e4f, 2e4f, -1e5f}, {0.5f, 0.5f, 40.0f}};
+        const Vec3 points[] = {{0.5f, 0.5f, 0.5f}, {1e5f, 0.0f, 0.0f}, {-3e4f, 2e4f, -1e5f}, {0.5f, 0.5f, 40.0f}};
         for (std::uint32_t i = 0; i < 4; ++i) {
             grid.insert(i, points[i]);
             ref.insert(i, points[i]);

@@ -125,11 +125,10 @@ void print_summary(const Result& r, const std::string& output) {
                  "nmesh: wrote %s: %zu vertices, %zu faces\n"
                  "nmesh: %llu iterations, %llu splits, %llu collapses (%llu refused), "
                  "%llu swaps kept of %llu tried, %.2f s learning (%.1f M it/s)%s\n",
-                 output.c_str(), r.mesh.positions.size(), r.mesh.triangles.size(),
-                 (unsigned long long)s.iterations, (unsigned long long)s.splits, (unsigned long long)s.collapses,
-                 (unsigned long long)s.collapses_refused, (unsigned long long)s.swaps_kept,
-                 (unsigned long long)s.swaps_tried, s.seconds, s.seconds > 0 ? s.iterations / s.seconds / 1e6 : 0.0,
-                 finishing.c_str());
+                 output.c_str(), r.mesh.positions.size(), r.mesh.triangles.size(), (unsigned long long)s.iterations,
+                 (unsigned long long)s.splits, (unsigned long long)s.collapses, (unsigned long long)s.collapses_refused,
+                 (unsigned long long)s.swaps_kept, (unsigned long long)s.swaps_tried, s.seconds,
+                 s.seconds > 0 ? s.iterations / s.seconds / 1e6 : 0.0, finishing.c_str());
 }
 
 // evaluate(), with its progress on stderr when it takes long (a cloud of millions of points).
@@ -151,10 +150,11 @@ int run_reconstruct(int argc, char** argv) {
         std::fputs(kReconstructUsage, stdout);
         return 0;
     }
-    const Arguments args(argc, argv, 2, {"--no-edge-swap", "--no-fold-guard", "--no-finish", "--quiet", "--ascii", "--save-on-interrupt"},
-                         {"-o", "--output", "--vertices", "--alpha-w", "--alpha-n", "--alpha", "--cvs", "--cec",
-                          "--seed", "--snapshots", "--stats", "--settle", "--finish-rounds",
-                          "--fit-rounds", "--index-points"});
+    const Arguments args(
+        argc, argv, 2,
+        {"--no-edge-swap", "--no-fold-guard", "--no-finish", "--quiet", "--ascii", "--save-on-interrupt"},
+        {"-o", "--output", "--vertices", "--alpha-w", "--alpha-n", "--alpha", "--cvs", "--cec", "--seed", "--snapshots",
+         "--stats", "--settle", "--finish-rounds", "--fit-rounds", "--index-points"});
     if (args.positional().size() != 1) throw UsageError("reconstruct takes one INPUT file");
     const std::string input = args.positional()[0];
     const std::string output = args.has("-o") ? args.text("-o") : args.text("--output");
@@ -250,7 +250,8 @@ int run_reconstruct(int argc, char** argv) {
         std::fprintf(stderr,
                      "nmesh: warning: %s is not a valid surface: %llu pairs of crossing triangles, %llu faces "
                      "pointing inward\n",
-                     output.c_str(), (unsigned long long)r.stats.crossing_pairs, (unsigned long long)r.stats.inward_faces);
+                     output.c_str(), (unsigned long long)r.stats.crossing_pairs,
+                     (unsigned long long)r.stats.inward_faces);
     if (args.has("--stats")) {
         const QualityReport q = evaluate_with_progress(cloud.points, r.mesh, quiet);
         write_file_atomically(stats_path, [&](std::ostream& o) { write_run_json(o, input, p, r, q); });
@@ -298,12 +299,12 @@ int run_info(int argc, char** argv) {
         for (const std::string& prop : e.properties) std::printf("  property %s\n", prop.c_str());
     }
     std::printf("points: %llu\n", (unsigned long long)info.points);
-    if (info.non_finite) std::printf("points with NaN or infinite coordinates: %llu\n", (unsigned long long)info.non_finite);
+    if (info.non_finite)
+        std::printf("points with NaN or infinite coordinates: %llu\n", (unsigned long long)info.non_finite);
     std::printf("faces: %llu\n", (unsigned long long)info.faces);
     if (!info.bounds.empty()) {
-        std::printf("bounding box: [%g, %g, %g] to [%g, %g, %g]\ndiagonal: %g\n", info.bounds.min.x,
-                    info.bounds.min.y, info.bounds.min.z, info.bounds.max.x, info.bounds.max.y, info.bounds.max.z,
-                    info.bounds.diagonal());
+        std::printf("bounding box: [%g, %g, %g] to [%g, %g, %g]\ndiagonal: %g\n", info.bounds.min.x, info.bounds.min.y,
+                    info.bounds.min.z, info.bounds.max.x, info.bounds.max.y, info.bounds.max.z, info.bounds.diagonal());
     }
     return 0;
 }

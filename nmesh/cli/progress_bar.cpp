@@ -38,9 +38,9 @@ void ProgressBar::update(const Progress& p) {
         const int filled = int(fraction * kWidth);
         std::string bar(std::size_t(filled), '#');
         bar.append(std::size_t(kWidth - filled), '.');
-        std::fprintf(out_, "\r[%s] %u / %u vertices%s  %.1f M it/s  %s elapsed  %s left   ", bar.c_str(),
-                     p.vertices, p.target_vertices, p.settling ? " (settling)" : "", rate / 1e6,
-                     clock_text(p.seconds).c_str(), left.c_str());
+        std::fprintf(out_, "\r[%s] %u / %u vertices%s  %.1f M it/s  %s elapsed  %s left   ", bar.c_str(), p.vertices,
+                     p.target_vertices, p.settling ? " (settling)" : "", rate / 1e6, clock_text(p.seconds).c_str(),
+                     left.c_str());
         drawn_ = true;
     } else {
         std::fprintf(out_, "nmesh: %u / %u vertices%s, %.1f M it/s, %s elapsed, %s left\n", p.vertices,

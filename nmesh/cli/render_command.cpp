@@ -115,12 +115,13 @@ std::vector<float> error_map(const std::string& points_path, const IndexedMesh& 
     options.value_max = float(top);
     const double diagonal = cloud.bounds().diagonal();
     const auto share = [&](double d) { return diagonal > 0.0 ? 100.0 * d / diagonal : 0.0; };
-    std::fprintf(stderr,
-                 "nmesh: error map: distance from each vertex to the nearest point of %s\n"
-                 "nmesh:   blue 0 | cyan %.4g | green %.4g | yellow %.4g | red %s%.4g (%.3g%% of the cloud's diagonal)\n"
-                 "nmesh:   largest %.4g (%.3g%%), mean %.4g (%.3g%%)\n",
-                 points_path.c_str(), top / 4, top / 2, 3 * top / 4, top < largest ? ">= " : "", top, share(top),
-                 largest, share(largest), mean, share(mean));
+    std::fprintf(
+        stderr,
+        "nmesh: error map: distance from each vertex to the nearest point of %s\n"
+        "nmesh:   blue 0 | cyan %.4g | green %.4g | yellow %.4g | red %s%.4g (%.3g%% of the cloud's diagonal)\n"
+        "nmesh:   largest %.4g (%.3g%%), mean %.4g (%.3g%%)\n",
+        points_path.c_str(), top / 4, top / 2, 3 * top / 4, top < largest ? ">= " : "", top, share(top), largest,
+        share(largest), mean, share(mean));
     return distances;
 }
 

@@ -19,7 +19,8 @@ CloudSurface::CloudSurface(const std::vector<Vec3>& points, const Mesh& mesh, co
     vertex_index_ = position_index(mesh, verts);
     if (points.size() <= kStoredNormalsPerVertex * verts.size()) {
         point_normals_.resize(points.size());
-        for (std::size_t i = 0; i < points.size(); ++i) point_normals_[i] = vertex_normals_[vertex_index_->nearest(points[i])];
+        for (std::size_t i = 0; i < points.size(); ++i)
+            point_normals_[i] = vertex_normals_[vertex_index_->nearest(points[i])];
     }
 }
 

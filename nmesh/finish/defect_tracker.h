@@ -31,7 +31,8 @@ public:
         });
         sort_unique(pairs_);
         for (std::uint32_t e = 0; e < mesh.edge_capacity(); ++e)
-            if (!mesh.is_removed(Edge(e)) && edge_folded(mesh, Mesh::halfedge(Edge(e), 0), cos_limit)) folds_.push_back(Edge(e));
+            if (!mesh.is_removed(Edge(e)) && edge_folded(mesh, Mesh::halfedge(Edge(e), 0), cos_limit))
+                folds_.push_back(Edge(e));
     }
 
     // The triangles around v changed (v moved, or was created or kept by a split or collapse).

@@ -47,8 +47,10 @@ public:
         items_.reserve(faces.size());
         for (const Face f : faces) {
             const Box b = face_box(mesh, f);
-            if (cell_count(b) > kMaxCells) large_.push_back({b, f});
-            else items_.push_back({b, f});
+            if (cell_count(b) > kMaxCells)
+                large_.push_back({b, f});
+            else
+                items_.push_back({b, f});
         }
         for (const Entry& e : items_) for_each_bucket(e.box, [&](std::uint32_t k) { ++start_[k + 1]; });
         for (std::size_t i = 1; i < start_.size(); ++i) start_[i] += start_[i - 1];
@@ -103,7 +105,8 @@ private:
         return {int(std::floor(p.x * inv_cell_)), int(std::floor(p.y * inv_cell_)), int(std::floor(p.z * inv_cell_))};
     }
     std::uint32_t bucket(const Cell& c) const {
-        return (std::uint32_t(c.x) * 73856093u ^ std::uint32_t(c.y) * 19349663u ^ std::uint32_t(c.z) * 83492791u) & mask_;
+        return (std::uint32_t(c.x) * 73856093u ^ std::uint32_t(c.y) * 19349663u ^ std::uint32_t(c.z) * 83492791u) &
+               mask_;
     }
     // The bucket a pair of overlapping boxes is reported from.
     std::uint32_t owner(const Box& a, const Box& b) const { return bucket(cell_of(max(a.lo, b.lo))); }
@@ -152,7 +155,8 @@ inline float grid_cell(const Mesh& mesh, const std::vector<Face>& faces) {
 // (nmesh::faces_intersect, which judges faces sharing a vertex or an edge by what they share).
 inline bool mesh_faces_intersect(const Mesh& mesh, Face f, Face g) {
     const auto s = corners(mesh, f), t = corners(mesh, g);
-    return nmesh::faces_intersect(mesh.positions().data(), {s[0].idx, s[1].idx, s[2].idx}, {t[0].idx, t[1].idx, t[2].idx});
+    return nmesh::faces_intersect(mesh.positions().data(), {s[0].idx, s[1].idx, s[2].idx},
+                                  {t[0].idx, t[1].idx, t[2].idx});
 }
 
 inline void sort_unique(std::vector<std::pair<Face, Face>>& pairs) {

@@ -89,7 +89,8 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
         report.flips += flip_to_delaunay(mesh, options.flip_max_dihedral_deg);
         step(1);
     }
-    if (options.rounds > 0 || options.fit_rounds > 0) report.flips += flip_to_delaunay(mesh, options.flip_max_dihedral_deg);
+    if (options.rounds > 0 || options.fit_rounds > 0)
+        report.flips += flip_to_delaunay(mesh, options.flip_max_dihedral_deg);
     if (options.repair_max_rounds > 0) {
         int last_rounds = 0;
         const auto on_round = [&](int rounds) {
@@ -109,14 +110,14 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
         if (!clean && (options.rounds > 0 || options.fit_rounds > 0)) {
             Mesh alternative = learnt;
             last_rounds = 0;
-            const RepairResult ra = repair_folds_and_intersections(alternative, options.repair_max_rounds,
-                                                                   options.fold_dihedral_deg, pull, seconds_left(),
-                                                                   on_round);
+            const RepairResult ra = repair_folds_and_intersections(
+                alternative, options.repair_max_rounds, options.fold_dihedral_deg, pull, seconds_left(), on_round);
             report.repair_rounds += ra.rounds;
             if (ra.intersecting_pairs < r.intersecting_pairs) {
                 mesh = std::move(alternative);
                 r = ra;
-                report.fallback = r.reverted ? FinishReport::Fallback::learnt_mesh : FinishReport::Fallback::repaired_learnt_mesh;
+                report.fallback =
+                    r.reverted ? FinishReport::Fallback::learnt_mesh : FinishReport::Fallback::repaired_learnt_mesh;
             }
         }
         report.intersecting_pairs_after = r.intersecting_pairs;

@@ -79,15 +79,15 @@ struct FinishOptions {
 };
 
 struct FinishReport {
-    bool skipped_flat = false;                  // a flat cloud: the stage did nothing
-    std::uint64_t flips = 0;                    // all flip passes together
+    bool skipped_flat = false;  // a flat cloud: the stage did nothing
+    std::uint64_t flips = 0;    // all flip passes together
     std::uint32_t relax_passes = 0;
     std::size_t intersecting_pairs_before = 0;  // at the start of the repair
     std::size_t folded_edges_before = 0;
-    std::size_t intersecting_pairs_after = 0;   // at the end (as before when reverted)
+    std::size_t intersecting_pairs_after = 0;  // at the end (as before when reverted)
     std::size_t folded_edges_after = 0;
     std::uint32_t repair_rounds = 0;
-    bool repair_reverted = false;               // the repair did not succeed and was undone
+    bool repair_reverted = false;  // the repair did not succeed and was undone
     // When the repair of the regularised mesh fails and that mesh has more intersecting pairs than
     // the learnt one, the stage falls back on the learnt mesh, repaired if possible.
     enum class Fallback { none, repaired_learnt_mesh, learnt_mesh };

@@ -119,8 +119,9 @@ private:
         stack[top++] = {{mesh.position(c[0]), mesh.position(c[1]), mesh.position(c[2])}, {d[0], d[1], d[2]}, 0};
         while (top > 0) {
             const Piece t = stack[--top];
-            const float longest = std::sqrt(
-                std::max({squared_distance(t.p[0], t.p[1]), squared_distance(t.p[1], t.p[2]), squared_distance(t.p[2], t.p[0])}));
+            const float longest =
+                std::sqrt(std::max({squared_distance(t.p[0], t.p[1]), squared_distance(t.p[1], t.p[2]),
+                                    squared_distance(t.p[2], t.p[0])}));
             // A point of the triangle lies within `longest` of every corner, and within
             // longest / sqrt(3) of the nearest one; the distance to the cloud grows by at most as
             // much as the point moves.

@@ -57,7 +57,9 @@ inline Vec3 area_vector(const Mesh& mesh, Face f) {
     return cross(mesh.position(c[1]) - p, mesh.position(c[2]) - p);
 }
 
-inline float length(const Mesh& mesh, Halfedge h) { return distance(mesh.position(mesh.from(h)), mesh.position(mesh.to(h))); }
+inline float length(const Mesh& mesh, Halfedge h) {
+    return distance(mesh.position(mesh.from(h)), mesh.position(mesh.to(h)));
+}
 
 inline float mean_edge_length(const Mesh& mesh) {
     double sum = 0.0;
@@ -127,7 +129,8 @@ inline float distance_to_ring(const Mesh& mesh, Vertex v, const Vec3& x) {
     float best = std::numeric_limits<float>::infinity();
     const Vec3& a = mesh.position(v);
     mesh.for_each_outgoing(v, [&](Halfedge h) {
-        const Vec3 y = closest_point_on_triangle_float(x, a, mesh.position(mesh.to(h)), mesh.position(mesh.to(mesh.next(h))));
+        const Vec3 y =
+            closest_point_on_triangle_float(x, a, mesh.position(mesh.to(h)), mesh.position(mesh.to(mesh.next(h))));
         best = std::min(best, squared_distance(x, y));
     });
     return std::sqrt(best);

@@ -33,7 +33,8 @@ std::vector<Edge> find_folded_edges(const Mesh& mesh, float dihedral_deg) {
     const float cos_limit = std::cos(dihedral_deg * kPiF / 180.0f);
     std::vector<Edge> edges;
     for (std::uint32_t e = 0; e < mesh.edge_capacity(); ++e)
-        if (!mesh.is_removed(Edge(e)) && edge_folded(mesh, Mesh::halfedge(Edge(e), 0), cos_limit)) edges.push_back(Edge(e));
+        if (!mesh.is_removed(Edge(e)) && edge_folded(mesh, Mesh::halfedge(Edge(e), 0), cos_limit))
+            edges.push_back(Edge(e));
     return edges;
 }
 
@@ -85,7 +86,7 @@ RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fo
     const float mean_len = mean_edge_length(mesh);
     if (cloud) estimate = std::make_unique<HausdorffEstimate>(mesh, *cloud, mean_len);
     const std::uint32_t target = mesh.n_vertices();
-    std::vector<std::uint8_t> level;   // per vertex: 0 outside the region, 1 ring, 2 core
+    std::vector<std::uint8_t> level;     // per vertex: 0 outside the region, 1 ring, 2 core
     std::vector<std::uint8_t> smoothed;  // per vertex: moved by a smoothing
     auto grow = [&](std::vector<std::uint8_t>& v) {
         if (v.size() < mesh.vertex_capacity()) v.resize(mesh.vertex_capacity(), 0);
@@ -106,8 +107,10 @@ RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fo
             for (int i = 0; i < 3; ++i, h = mesh.next(h)) {
                 const float l = length(mesh, h);
                 if (l >= best_len) continue;
-                if (mesh.can_collapse(h)) best = h, best_len = l;
-                else if (mesh.can_collapse(Mesh::twin(h))) best = Mesh::twin(h), best_len = l;
+                if (mesh.can_collapse(h))
+                    best = h, best_len = l;
+                else if (mesh.can_collapse(Mesh::twin(h)))
+                    best = Mesh::twin(h), best_len = l;
             }
             if (!best.valid()) continue;
             const Vertex b = mesh.to(best);

@@ -11,8 +11,7 @@ using Vector3d = Eigen::Vector3d;
 Vector3d to_eigen(const Vec3& v) { return {double(v.x), double(v.y), double(v.z)}; }
 }  // namespace
 
-double point_triangle_squared_distance(const Vec3& p_in, const Vec3& a_in, const Vec3& b_in,
-                                       const Vec3& c_in) {
+double point_triangle_squared_distance(const Vec3& p_in, const Vec3& a_in, const Vec3& b_in, const Vec3& c_in) {
     // The closest point by Voronoi region of the triangle (Ericson, Real-Time Collision Detection,
     // section 5.1.5): vertex regions, then edge regions, then the face.
     const Vector3d p = to_eigen(p_in), a = to_eigen(a_in), b = to_eigen(b_in), c = to_eigen(c_in);

@@ -66,8 +66,8 @@ public:
                     // A triangle whose box is farther than the best cannot be nearer.
                     if (box_squared_distance(boxes_[order_[i]], p) > best) continue;
                     const auto& t = mesh_.triangles[order_[i]];
-                    const double d = point_triangle_squared_distance(
-                        p, mesh_.positions[t[0]], mesh_.positions[t[1]], mesh_.positions[t[2]]);
+                    const double d = point_triangle_squared_distance(p, mesh_.positions[t[0]], mesh_.positions[t[1]],
+                                                                     mesh_.positions[t[2]]);
                     best = std::min(best, d);
                 }
                 continue;
@@ -125,8 +125,8 @@ private:
         double d2 = 0.0;
         for (int a = 0; a < 3; ++a) {
             const double x = double(p[a]);
-            const double g = x < double(b.min[a]) ? double(b.min[a]) - x
-                                                  : (x > double(b.max[a]) ? x - double(b.max[a]) : 0.0);
+            const double g =
+                x < double(b.min[a]) ? double(b.min[a]) - x : (x > double(b.max[a]) ? x - double(b.max[a]) : 0.0);
             d2 += g * g;
         }
         return d2;
@@ -154,9 +154,7 @@ private:
         const int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
         const std::uint32_t mid = first + (last - first) / 2;
         std::nth_element(order_.begin() + first, order_.begin() + mid, order_.begin() + last,
-                         [&](std::uint32_t s, std::uint32_t t) {
-                             return centroids_[s][axis] < centroids_[t][axis];
-                         });
+                         [&](std::uint32_t s, std::uint32_t t) { return centroids_[s][axis] < centroids_[t][axis]; });
         const std::uint32_t left = std::uint32_t(nodes_.size());
         nodes_.emplace_back();
         nodes_.emplace_back();

@@ -58,9 +58,7 @@ public:
     std::uint64_t remaining() const { return size_ > offset() ? size_ - offset() : 0; }
     std::uint64_t line_number() const { return line_; }
 
-    const unsigned char* data() const {
-        return reinterpret_cast<const unsigned char*>(buffer_.data()) + pos_;
-    }
+    const unsigned char* data() const { return reinterpret_cast<const unsigned char*>(buffer_.data()) + pos_; }
     std::size_t available() const { return end_ - pos_; }
     void consume(std::size_t n) {
         assert(n <= available());

@@ -291,10 +291,10 @@ void check_writable(const std::string& path, const IndexedMesh& mesh, const Mesh
     const std::size_t n = mesh.positions.size();
     if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
         throw InputError(where + "mesh has " + std::to_string(n) +
-                             " vertices, more than PLY's int indices can address");
+                         " vertices, more than PLY's int indices can address");
     if (!options.colors.empty() && options.colors.size() != n)
-        throw ParameterError(where + "options.colors has " + std::to_string(options.colors.size()) +
-                             " entries for " + std::to_string(n) + " vertices");
+        throw ParameterError(where + "options.colors has " + std::to_string(options.colors.size()) + " entries for " +
+                             std::to_string(n) + " vertices");
     for (std::size_t i = 0; i < n; ++i) {
         const Vec3& p = mesh.positions[i];
         if (!is_finite(p)) throw InputError(where + "mesh.positions[" + std::to_string(i) + "] is not finite");
@@ -302,8 +302,8 @@ void check_writable(const std::string& path, const IndexedMesh& mesh, const Mesh
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
         for (std::uint32_t v : mesh.triangles[t])
             if (v >= n)
-                throw InputError(where + "mesh.triangles[" + std::to_string(t) + "] uses vertex " +
-                                     std::to_string(v) + " of " + std::to_string(n));
+                throw InputError(where + "mesh.triangles[" + std::to_string(t) + "] uses vertex " + std::to_string(v) +
+                                 " of " + std::to_string(n));
 }
 
 MeshFormat mesh_format(const std::string& path) {
@@ -313,8 +313,7 @@ MeshFormat mesh_format(const std::string& path) {
     if (ext == ".ply") return MeshFormat::ply;
     if (ext == ".obj") return MeshFormat::obj;
     if (ext == ".off") return MeshFormat::off;
-    throw IoError(path + ": unknown mesh format " +
-                  (ext.empty() ? std::string("(no extension)") : "'" + ext + "'") +
+    throw IoError(path + ": unknown mesh format " + (ext.empty() ? std::string("(no extension)") : "'" + ext + "'") +
                   "; expected .ply, .obj or .off");
 }
 
@@ -325,9 +324,15 @@ void write_mesh(const std::string& path, const IndexedMesh& mesh, const MeshWrit
     check_writable(path, mesh, options);
     write_file_atomically(path, [&](std::ostream& os) {
         switch (format) {
-            case MeshFormat::ply: write_ply(os, mesh, options); break;
-            case MeshFormat::obj: write_obj(os, mesh); break;
-            case MeshFormat::off: write_off(os, mesh, options); break;
+            case MeshFormat::ply:
+                write_ply(os, mesh, options);
+                break;
+            case MeshFormat::obj:
+                write_obj(os, mesh);
+                break;
+            case MeshFormat::off:
+                write_off(os, mesh, options);
+                break;
         }
     });
 }

@@ -31,23 +31,20 @@ void read_obj(InputFile& in, ReadFaces faces, FileGeometry& g) {
                 if (!parse_int(v, index)) {
                     if (has_binary_byte(line)) in.fail_line("binary data, not text");
                     if (is_integer_text(v))
-                        in.fail_line("vertex index " + std::string(v) + " is out of range (" +
-                                     std::to_string(defined) + " vertices are defined above this line)");
-                    in.fail_line("face corner " + quote_token(corner) +
-                                 " does not start with a vertex index");
+                        in.fail_line("vertex index " + std::string(v) + " is out of range (" + std::to_string(defined) +
+                                     " vertices are defined above this line)");
+                    in.fail_line("face corner " + quote_token(corner) + " does not start with a vertex index");
                 }
                 if (index == 0) in.fail_line("vertex index 0 (OBJ indices start at 1)");
                 // Negative indices count back from the latest vertex: -1 is the last one defined.
-                const std::int64_t resolved =
-                    index > 0 ? index - 1 : static_cast<std::int64_t>(defined) + index;
+                const std::int64_t resolved = index > 0 ? index - 1 : static_cast<std::int64_t>(defined) + index;
                 if (resolved < 0 || static_cast<std::uint64_t>(resolved) >= defined)
                     in.fail_line("vertex index " + std::to_string(index) + " is out of range (" +
                                  std::to_string(defined) + " vertices are defined above this line)");
                 g.face_indices.push_back(static_cast<std::uint32_t>(resolved));
             }
             const std::size_t corners = g.face_indices.size() - first;
-            if (corners < 3)
-                in.fail_line("a face needs at least 3 corners, found " + std::to_string(corners));
+            if (corners < 3) in.fail_line("a face needs at least 3 corners, found " + std::to_string(corners));
             end_face(g);
         }
     }

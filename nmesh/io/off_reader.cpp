@@ -31,8 +31,7 @@ void read_off(InputFile& in, ReadFaces faces, FileGeometry& g) {
     if (!next_data_line(in, line)) in.fail("no OFF header");
     std::string_view rest = line;
     const std::string_view keyword = next_token(rest);
-    if (!is_off_keyword(keyword))
-        in.fail_line("not an OFF file (the header keyword is " + quote_token(keyword) + ")");
+    if (!is_off_keyword(keyword)) in.fail_line("not an OFF file (the header keyword is " + quote_token(keyword) + ")");
     std::string_view counts = rest;
     std::string_view probe = rest;
     const std::string_view after = next_token(probe);
@@ -82,8 +81,7 @@ void read_off(InputFile& in, ReadFaces faces, FileGeometry& g) {
             const std::string_view t = next_token(r);
             std::int64_t index = 0;
             if (t.empty())
-                in.fail_line("face " + std::to_string(f) + " has fewer than " + std::to_string(n) +
-                             " indices");
+                in.fail_line("face " + std::to_string(f) + " has fewer than " + std::to_string(n) + " indices");
             if (!parse_int(t, index))
                 in.fail_line("vertex index " + quote_token(t) +
                              (is_integer_text(t) ? " is out of range" : " is not an integer"));

@@ -23,13 +23,17 @@ constexpr PlyTypeName kPlyTypeNames[] = {
 std::size_t type_size(PlyType t) {
     switch (t) {
         case PlyType::int8:
-        case PlyType::uint8: return 1;
+        case PlyType::uint8:
+            return 1;
         case PlyType::int16:
-        case PlyType::uint16: return 2;
+        case PlyType::uint16:
+            return 2;
         case PlyType::int32:
         case PlyType::uint32:
-        case PlyType::float32: return 4;
-        case PlyType::float64: return 8;
+        case PlyType::float32:
+            return 4;
+        case PlyType::float64:
+            return 8;
     }
     return 0;
 }
@@ -51,14 +55,22 @@ T load(const unsigned char* p, bool swap) {
 
 float load_coordinate(const unsigned char* p, PlyType t, bool swap) {
     switch (t) {
-        case PlyType::int8: return static_cast<float>(load<std::int8_t>(p, swap));
-        case PlyType::uint8: return static_cast<float>(load<std::uint8_t>(p, swap));
-        case PlyType::int16: return static_cast<float>(load<std::int16_t>(p, swap));
-        case PlyType::uint16: return static_cast<float>(load<std::uint16_t>(p, swap));
-        case PlyType::int32: return static_cast<float>(load<std::int32_t>(p, swap));
-        case PlyType::uint32: return static_cast<float>(load<std::uint32_t>(p, swap));
-        case PlyType::float32: return load<float>(p, swap);
-        case PlyType::float64: return to_float(load<double>(p, swap));
+        case PlyType::int8:
+            return static_cast<float>(load<std::int8_t>(p, swap));
+        case PlyType::uint8:
+            return static_cast<float>(load<std::uint8_t>(p, swap));
+        case PlyType::int16:
+            return static_cast<float>(load<std::int16_t>(p, swap));
+        case PlyType::uint16:
+            return static_cast<float>(load<std::uint16_t>(p, swap));
+        case PlyType::int32:
+            return static_cast<float>(load<std::int32_t>(p, swap));
+        case PlyType::uint32:
+            return static_cast<float>(load<std::uint32_t>(p, swap));
+        case PlyType::float32:
+            return load<float>(p, swap);
+        case PlyType::float64:
+            return to_float(load<double>(p, swap));
     }
     return 0.0f;
 }
@@ -66,14 +78,21 @@ float load_coordinate(const unsigned char* p, PlyType t, bool swap) {
 // Precondition: is_integer(t).
 std::int64_t load_integer(const unsigned char* p, PlyType t, bool swap) {
     switch (t) {
-        case PlyType::int8: return load<std::int8_t>(p, swap);
-        case PlyType::uint8: return load<std::uint8_t>(p, swap);
-        case PlyType::int16: return load<std::int16_t>(p, swap);
-        case PlyType::uint16: return load<std::uint16_t>(p, swap);
-        case PlyType::int32: return load<std::int32_t>(p, swap);
-        case PlyType::uint32: return load<std::uint32_t>(p, swap);
+        case PlyType::int8:
+            return load<std::int8_t>(p, swap);
+        case PlyType::uint8:
+            return load<std::uint8_t>(p, swap);
+        case PlyType::int16:
+            return load<std::int16_t>(p, swap);
+        case PlyType::uint16:
+            return load<std::uint16_t>(p, swap);
+        case PlyType::int32:
+            return load<std::int32_t>(p, swap);
+        case PlyType::uint32:
+            return load<std::uint32_t>(p, swap);
         case PlyType::float32:
-        case PlyType::float64: break;
+        case PlyType::float64:
+            break;
     }
     assert(false && "load_integer on a floating-point type");
     return 0;
@@ -102,9 +121,12 @@ struct PlyHeader {
 
 const char* encoding_name(PlyEncoding e) {
     switch (e) {
-        case PlyEncoding::ascii: return "ascii";
-        case PlyEncoding::binary_little_endian: return "binary_little_endian";
-        case PlyEncoding::binary_big_endian: return "binary_big_endian";
+        case PlyEncoding::ascii:
+            return "ascii";
+        case PlyEncoding::binary_little_endian:
+            return "binary_little_endian";
+        case PlyEncoding::binary_big_endian:
+            return "binary_big_endian";
     }
     return "";
 }
@@ -135,10 +157,14 @@ PlyHeader read_ply_header(InputFile& in) {
         if (key == "format") {
             const std::string_view encoding = next_token(rest);
             const std::string_view version = next_token(rest);
-            if (encoding == "ascii") h.encoding = PlyEncoding::ascii;
-            else if (encoding == "binary_little_endian") h.encoding = PlyEncoding::binary_little_endian;
-            else if (encoding == "binary_big_endian") h.encoding = PlyEncoding::binary_big_endian;
-            else in.fail_line("unknown PLY format " + quote_token(encoding));
+            if (encoding == "ascii")
+                h.encoding = PlyEncoding::ascii;
+            else if (encoding == "binary_little_endian")
+                h.encoding = PlyEncoding::binary_little_endian;
+            else if (encoding == "binary_big_endian")
+                h.encoding = PlyEncoding::binary_big_endian;
+            else
+                in.fail_line("unknown PLY format " + quote_token(encoding));
             if (version != "1.0" && version != "1")
                 in.fail_line("unsupported PLY version " + quote_token(version) + " (only 1.0 is known)");
             have_format = true;
@@ -202,8 +228,10 @@ public:
         check_body_size();
         plan();
         for (std::size_t i = 0; i < h_.elements.size(); ++i) {
-            if (h_.encoding == PlyEncoding::ascii) read_ascii_element(h_.elements[i], roles_[i]);
-            else read_binary_element(h_.elements[i], roles_[i]);
+            if (h_.encoding == PlyEncoding::ascii)
+                read_ascii_element(h_.elements[i], roles_[i]);
+            else
+                read_binary_element(h_.elements[i], roles_[i]);
         }
         check_nothing_follows();
     }
@@ -258,8 +286,7 @@ private:
                 // (ASCII) or a count and three indices (binary).
                 const std::uint64_t min_face_bytes =
                     h_.encoding == PlyEncoding::ascii ? 8 : type_size(p.count_type) + 3 * type_size(p.type);
-                const auto faces =
-                    static_cast<std::size_t>(std::min(e.count, in_.remaining() / min_face_bytes + 1));
+                const auto faces = static_cast<std::size_t>(std::min(e.count, in_.remaining() / min_face_bytes + 1));
                 out_.face_offsets.reserve(faces + 1);
                 out_.face_indices.reserve(3 * faces);
                 begin_faces(out_);
@@ -274,8 +301,10 @@ private:
     std::uint64_t min_record_bytes(const PlyElement& e) const {
         std::uint64_t bytes = 0;
         for (const PlyProperty& p : e.properties) {
-            if (h_.encoding == PlyEncoding::ascii) bytes += 2;
-            else bytes += type_size(p.is_list ? p.count_type : p.type);
+            if (h_.encoding == PlyEncoding::ascii)
+                bytes += 2;
+            else
+                bytes += type_size(p.is_list ? p.count_type : p.type);
         }
         return bytes;
     }
@@ -334,8 +363,8 @@ private:
         for (std::uint64_t r = 0; r < e.count; ++r) {
             do {
                 if (!in_.next_line(line))
-                    in_.fail("the file ends after " + std::to_string(r) + " of " + std::to_string(e.count) +
-                             " '" + e.name + "' records (line " + std::to_string(in_.line_number()) + ")");
+                    in_.fail("the file ends after " + std::to_string(r) + " of " + std::to_string(e.count) + " '" +
+                             e.name + "' records (line " + std::to_string(in_.line_number()) + ")");
             } while (is_blank_line(line));
             if (!decode) continue;
             const Vec3 p = read_ascii_record(e, roles, r, line);
@@ -358,9 +387,12 @@ private:
             const PlyProperty& prop = e.properties[j];
             if (!prop.is_list) {
                 const float v = parse_coordinate(in_, line, value(rest));
-                if (roles[j] == Role::x) p.x = v;
-                else if (roles[j] == Role::y) p.y = v;
-                else if (roles[j] == Role::z) p.z = v;
+                if (roles[j] == Role::x)
+                    p.x = v;
+                else if (roles[j] == Role::y)
+                    p.y = v;
+                else if (roles[j] == Role::z)
+                    p.z = v;
                 continue;
             }
             const std::string_view count_token = value(rest);
@@ -397,8 +429,7 @@ private:
     template <class Fail>
     void check_corner_count(std::int64_t n, std::uint64_t face, const Fail& fail) const {
         if (n < 3)
-            fail("face " + std::to_string(face) + " has " + std::to_string(n) +
-                 " corners; a face needs at least 3");
+            fail("face " + std::to_string(face) + " has " + std::to_string(n) + " corners; a face needs at least 3");
     }
 
     template <class Fail>
@@ -413,17 +444,15 @@ private:
 
     [[noreturn]] void fail_truncated(const PlyElement& e, std::uint64_t r) const {
         in_.fail_at_offset(in_.offset(), "truncated binary body: the file (" + std::to_string(in_.size()) +
-                                             " bytes) ends inside '" + e.name + "' record " +
-                                             std::to_string(r) + " of " + std::to_string(e.count));
+                                             " bytes) ends inside '" + e.name + "' record " + std::to_string(r) +
+                                             " of " + std::to_string(e.count));
     }
 
-    bool swap() const {
-        return (h_.encoding == PlyEncoding::binary_little_endian) != host_is_little_endian();
-    }
+    bool swap() const { return (h_.encoding == PlyEncoding::binary_little_endian) != host_is_little_endian(); }
 
     void read_binary_element(const PlyElement& e, const std::vector<Role>& roles) {
-        const bool fixed = std::none_of(e.properties.begin(), e.properties.end(),
-                                        [](const PlyProperty& p) { return p.is_list; });
+        const bool fixed =
+            std::none_of(e.properties.begin(), e.properties.end(), [](const PlyProperty& p) { return p.is_list; });
         const bool decode = std::any_of(roles.begin(), roles.end(), [](Role r) { return r != Role::skip; });
         if (fixed && !decode) {
             std::uint64_t stride = 0;
@@ -456,8 +485,8 @@ private:
         const bool swap_bytes = swap();
         std::vector<Vec3>& out = out_.positions;
         const bool exact_float_xyz = stride == 12 && !swap_bytes && offset[0] == 0 && offset[1] == 4 &&
-                                     offset[2] == 8 && type[0] == PlyType::float32 &&
-                                     type[1] == PlyType::float32 && type[2] == PlyType::float32;
+                                     offset[2] == 8 && type[0] == PlyType::float32 && type[1] == PlyType::float32 &&
+                                     type[2] == PlyType::float32;
         if (exact_float_xyz) {
             const std::size_t start = out.size();
             out.resize(start + count);
@@ -465,8 +494,8 @@ private:
             if (got < count * stride) fail_truncated(e, got / stride);
             return;
         }
-        const bool native_floats = !swap_bytes && type[0] == PlyType::float32 &&
-                                   type[1] == PlyType::float32 && type[2] == PlyType::float32;
+        const bool native_floats =
+            !swap_bytes && type[0] == PlyType::float32 && type[1] == PlyType::float32 && type[2] == PlyType::float32;
         const std::size_t start = out.size();
         out.resize(start + count);
         Vec3* q = out.data() + start;
@@ -495,8 +524,8 @@ private:
     // Records with lists: property by property.
     void walk_records(const PlyElement& e, const std::vector<Role>& roles) {
         const bool swap_bytes = swap();
-        const bool is_vertex = e.name == "vertex" &&
-                               std::any_of(roles.begin(), roles.end(), [](Role r) { return r == Role::x; });
+        const bool is_vertex =
+            e.name == "vertex" && std::any_of(roles.begin(), roles.end(), [](Role r) { return r == Role::x; });
         if (is_vertex) out_.positions.reserve(static_cast<std::size_t>(e.count));
         for (std::uint64_t r = 0; r < e.count; ++r) {
             Vec3 p;
@@ -505,9 +534,12 @@ private:
                 if (!prop.is_list) {
                     const std::size_t size = type_size(prop.type);
                     need(size, e, r);
-                    if (roles[j] == Role::x) p.x = load_coordinate(in_.data(), prop.type, swap_bytes);
-                    else if (roles[j] == Role::y) p.y = load_coordinate(in_.data(), prop.type, swap_bytes);
-                    else if (roles[j] == Role::z) p.z = load_coordinate(in_.data(), prop.type, swap_bytes);
+                    if (roles[j] == Role::x)
+                        p.x = load_coordinate(in_.data(), prop.type, swap_bytes);
+                    else if (roles[j] == Role::y)
+                        p.y = load_coordinate(in_.data(), prop.type, swap_bytes);
+                    else if (roles[j] == Role::z)
+                        p.z = load_coordinate(in_.data(), prop.type, swap_bytes);
                     in_.consume(size);
                     continue;
                 }

@@ -30,13 +30,10 @@ Format choose_format(const std::string& path, InputFile& in) {
     constexpr std::size_t kSniffBytes = 16;  // the longest keyword recognised here, with room to spare
     in.fill(kSniffBytes);
     const std::string_view head(reinterpret_cast<const char*>(in.data()), in.available());
-    if (head.size() >= 4 && head.substr(0, 3) == "ply" && (head[3] == '\n' || head[3] == '\r'))
-        return Format::ply;
+    if (head.size() >= 4 && head.substr(0, 3) == "ply" && (head[3] == '\n' || head[3] == '\r')) return Format::ply;
     const std::size_t keyword_end = head.find_first_of(" \t\r\n");
-    if (keyword_end != std::string_view::npos && is_off_keyword(head.substr(0, keyword_end)))
-        return Format::off;
-    in.fail("unknown file format: " +
-            (ext.empty() ? std::string("no extension") : "extension " + quote_token(ext)) +
+    if (keyword_end != std::string_view::npos && is_off_keyword(head.substr(0, keyword_end))) return Format::off;
+    in.fail("unknown file format: " + (ext.empty() ? std::string("no extension") : "extension " + quote_token(ext)) +
             " is not one of .ply .xyz .txt .pts .csv .obj .off, and the content is not PLY or OFF");
 }
 
@@ -47,19 +44,28 @@ FileGeometry read_geometry(const std::string& path, ReadFaces faces) {
     if (in.size() == 0) in.fail("empty file");
     FileGeometry g;
     switch (choose_format(path, in)) {
-        case Format::ply: read_ply(in, faces, g); break;
-        case Format::xyz: read_xyz(in, false, g); break;
-        case Format::pts: read_xyz(in, true, g); break;
-        case Format::obj: read_obj(in, faces, g); break;
-        case Format::off: read_off(in, faces, g); break;
+        case Format::ply:
+            read_ply(in, faces, g);
+            break;
+        case Format::xyz:
+            read_xyz(in, false, g);
+            break;
+        case Format::pts:
+            read_xyz(in, true, g);
+            break;
+        case Format::obj:
+            read_obj(in, faces, g);
+            break;
+        case Format::off:
+            read_off(in, faces, g);
+            break;
     }
     if (faces == ReadFaces::yes && g.positions.size() > std::numeric_limits<std::uint32_t>::max())
         in.fail("too many vertices for 32-bit face indices (" + std::to_string(g.positions.size()) + ")");
     return g;
 }
 
-namespace {
-}  // namespace
+namespace {}  // namespace
 
 PointCloud read_points(const std::string& path, PointReadReport* report) {
     FileGeometry g = read_geometry(path, ReadFaces::no);

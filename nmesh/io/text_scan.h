@@ -37,14 +37,12 @@ inline constexpr std::size_t kMaxLineBytes = kBufferBytes;
 // Small helpers
 
 inline std::uint64_t saturating_add(std::uint64_t a, std::uint64_t b) {
-    return a > std::numeric_limits<std::uint64_t>::max() - b ? std::numeric_limits<std::uint64_t>::max()
-                                                             : a + b;
+    return a > std::numeric_limits<std::uint64_t>::max() - b ? std::numeric_limits<std::uint64_t>::max() : a + b;
 }
 
 inline std::uint64_t saturating_mul(std::uint64_t a, std::uint64_t b) {
-    return (a != 0 && b > std::numeric_limits<std::uint64_t>::max() / a)
-               ? std::numeric_limits<std::uint64_t>::max()
-               : a * b;
+    return (a != 0 && b > std::numeric_limits<std::uint64_t>::max() / a) ? std::numeric_limits<std::uint64_t>::max()
+                                                                         : a * b;
 }
 
 inline bool host_is_little_endian() {
@@ -96,9 +94,8 @@ inline std::string_view without_plus(std::string_view t) {
 inline bool is_digit(char c) { return c >= '0' && c <= '9'; }
 
 // Powers of ten a double holds exactly (5^22 < 2^53).
-inline constexpr double kExactPowersOfTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                        1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-                                        1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+inline constexpr double kExactPowersOfTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                               1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
 
 // Clinger's fast path, several times faster than std::from_chars<float> here. A decimal whose
 // digits form an integer m <= 2^53 and whose decimal exponent is within +-22 becomes a double with
@@ -215,8 +212,7 @@ inline std::string_view next_token(std::string_view& rest, const CharSet& separa
 // `line` up to its first '#'.
 inline std::string_view without_comment(std::string_view line) {
     const void* hash = std::memchr(line.data(), '#', line.size());
-    return hash ? line.substr(0, static_cast<std::size_t>(static_cast<const char*>(hash) - line.data()))
-                : line;
+    return hash ? line.substr(0, static_cast<std::size_t>(static_cast<const char*>(hash) - line.data())) : line;
 }
 
 inline bool is_blank_line(std::string_view line) { return std::all_of(line.begin(), line.end(), is_blank); }

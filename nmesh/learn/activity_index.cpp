@@ -22,8 +22,7 @@ std::uint32_t pick(bool c, std::uint32_t a, std::uint32_t b) {
 
 }  // namespace
 
-ActivityIndex::ActivityIndex(double alpha)
-    : alpha_(alpha), inv_alpha_(1.0 / alpha), bucket_heads_(kBuckets, kNone) {
+ActivityIndex::ActivityIndex(double alpha) : alpha_(alpha), inv_alpha_(1.0 / alpha), bucket_heads_(kBuckets, kNone) {
     if (!(alpha >= kMinAlpha && alpha <= 1.0))
         throw ParameterError("ActivityIndex: alpha must be in [1e-100, 1], got " + std::to_string(alpha));
 }
@@ -142,8 +141,7 @@ void ActivityIndex::begin_epoch() {
         for (std::uint64_t bits = bucket_bits_[w]; bits != 0; bits &= bits - 1)
             bucket_heads_[(base + w * 64 + std::uint64_t(lowest_bit(bits))) % kBuckets] = kNone;
     }
-    for (std::size_t w = 0; w + kRetiredWords < kWords; ++w)
-        bucket_bits_[w] = bucket_bits_[w + kRetiredWords];
+    for (std::size_t w = 0; w + kRetiredWords < kWords; ++w) bucket_bits_[w] = bucket_bits_[w + kRetiredWords];
     for (std::size_t w = kWords - kRetiredWords; w < kWords; ++w) bucket_bits_[w] = 0;
     for (std::size_t s = 0; s + 1 < kSummaryWords; ++s) summary_bits_[s] = summary_bits_[s + 1];
     summary_bits_[kSummaryWords - 1] = 0;

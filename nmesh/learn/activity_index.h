@@ -185,9 +185,9 @@ private:
     static_assert(kSweepEpochs + kGoneLag <= kEpochMask, "lags must stay below 2^kEpochBits");
 
     struct Node {
-        double raw = 0.0;                // tau * scale, in the units of its epoch
-        std::uint64_t stamp_epoch = 0;   // the stamp of the last signal (or addition), and the
-                                         // epoch raw was written in, mod 2^kEpochBits
+        double raw = 0.0;                                        // tau * scale, in the units of its epoch
+        std::uint64_t stamp_epoch = 0;                           // the stamp of the last signal (or addition), and the
+                                                                 // epoch raw was written in, mod 2^kEpochBits
         std::uint32_t bucket_prev = kNone, bucket_next = kNone;  // circular bucket list; kNone: absent
                                                                  // (stale, never followed, if retired)
     };

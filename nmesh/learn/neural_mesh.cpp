@@ -39,7 +39,12 @@ private:
 
 NeuralMesh::NeuralMesh(PointSpan points, const BoundingBox& bounds, const Parameters& params,
                        const PointTransform& transform)
-    : points_(points), transform_(transform), params_(params), grid_(bounds), activity_(params.alpha), rng_(params.seed) {
+    : points_(points),
+      transform_(transform),
+      params_(params),
+      grid_(bounds),
+      activity_(params.alpha),
+      rng_(params.seed) {
     // Choice: the initial tetrahedron is regular, centred on the cloud's bounding box, with a
     // circumradius of a quarter of the box's diagonal: inside the data for a closed scan, and
     // large enough that all four vertices win signals from the start.
@@ -253,10 +258,10 @@ void NeuralMesh::smooth_neighbourhood(const std::uint32_t* ring, std::uint32_t k
         rotated = rotated + cross_zxy(first, rfirst, prev, rprev);  // closes the ring
         const F4 normal = yzx(rotated);
         const F4 laplacian = sum * (1.0f / float(m));  // eq. (5)
-        float nn, ln;  // n . n and L . n
+        float nn, ln;                                  // n . n and L . n
         dot2(normal, laplacian, normal, nn, ln);
         const F4 tangential = nn > 0.0f ? laplacian - normal * (ln / nn) : laplacian;  // eq. (4)
-        updated[i] = to_vec3(p + tangential * an);  // eq. (3)
+        updated[i] = to_vec3(p + tangential * an);                                     // eq. (3)
     }
     for (std::uint32_t i = 0; i < k; ++i) set_position(Vertex(ring[i]), updated[i]);
 }
@@ -264,10 +269,10 @@ void NeuralMesh::smooth_neighbourhood(const std::uint32_t* ring, std::uint32_t k
 // Steps 3-6 for the winner w of sample x. `ring` holds w's k neighbours (ring_of), whose
 // neighbourhood is already being fetched when `prefetched`.
 void NeuralMesh::update(Vertex w, const Vec3& x, const std::uint32_t* ring, std::uint32_t k, bool prefetched) {
-    move_winner(w, x, ring, k);                // step 3
+    move_winner(w, x, ring, k);                 // step 3
     smooth_neighbourhood(ring, k, prefetched);  // step 4
-    activity_.signal(w.idx);                   // step 5, eq. (6): tau_w += 1
-    activity_.decay();                         // step 6, eq. (7): tau_v *= alpha for all v
+    activity_.signal(w.idx);                    // step 5, eq. (6): tau_w += 1
+    activity_.decay();                          // step 6, eq. (7): tau_v *= alpha for all v
     ++iteration_;
     ++stats_.iterations;
 }
@@ -451,9 +456,7 @@ float NeuralMesh::face_deviation(Halfedge h) const {
 }
 
 // Eq. (8): Dev(e) = DM(t1, X) + DM(t2, X) for the two triangles of e.
-float NeuralMesh::edge_deviation(Halfedge h) const {
-    return face_deviation(h) + face_deviation(Mesh::twin(h));
-}
+float NeuralMesh::edge_deviation(Halfedge h) const { return face_deviation(h) + face_deviation(Mesh::twin(h)); }
 
 // Section 4, after an edge collapse with remaining vertex v:
 //  1. among the edges incident to v take the edge e with the largest Dev(e), eq. (8);

@@ -116,9 +116,9 @@ private:
     RingCache rings_;
     std::unique_ptr<PointGrid> cloud_index_;  // eq. (9); built only for the edge swap
     Random rng_;
-    Vec3 ahead_[2];                     // the next two samples, normalised
-    std::uint32_t ahead_index_ = 0;     // the index of the one after them, drawn in advance
-    std::uint64_t ahead_cell_ = 0;      // ahead_[1]'s grid cell (VertexGrid::prefetch_query)
+    Vec3 ahead_[2];                  // the next two samples, normalised
+    std::uint32_t ahead_index_ = 0;  // the index of the one after them, drawn in advance
+    std::uint64_t ahead_cell_ = 0;   // ahead_[1]'s grid cell (VertexGrid::prefetch_query)
     // From this many vertices on, where the mesh no longer fits in the cache, each iteration
     // looks one sample ahead (look_ahead; docs/performance.md has the measurements). The results
     // are the same bit for bit either way.
@@ -141,7 +141,7 @@ private:
     // Scratch space reused across iterations (no allocation in steady state).
     std::vector<std::uint32_t> ring_;  // the ring of a vertex not in the ring cache
     std::vector<std::uint32_t> ring2_;
-    std::vector<Vec3> updated_;         // step 4's new positions
+    std::vector<Vec3> updated_;  // step 4's new positions
     std::vector<std::uint32_t> inactive_;
     std::vector<Halfedge> swap_ring_;
     std::vector<float> swap_dm_;

@@ -11,7 +11,8 @@ void Parameters::validate() const {
     auto bad = [](const std::string& name, const std::string& why) {
         throw ParameterError("invalid parameter " + name + ": " + why);
     };
-    if (target_vertices < 4) bad("target_vertices", "must be at least 4 (a tetrahedron), got " + std::to_string(target_vertices));
+    if (target_vertices < 4)
+        bad("target_vertices", "must be at least 4 (a tetrahedron), got " + std::to_string(target_vertices));
     if (target_vertices > NeuralMesh::kMaxTargetVertices)
         bad("target_vertices", "must be at most " + std::to_string(NeuralMesh::kMaxTargetVertices) +
                                    " (the mesh holds at most 2^31 half-edges), got " + std::to_string(target_vertices));

@@ -55,7 +55,9 @@ struct Normalization {
 // farthest from the first), then passes that stop at the first point off the line and at the
 // fourth distinct point. A non-finite coordinate shows as an infinite box or a NaN distance.
 BoundingBox require_reconstructible(PointSpan pts) {
-    if (pts.size() < 4) throw InputError("the point cloud has " + std::to_string(pts.size()) + " points; at least 4 distinct points are needed");
+    if (pts.size() < 4)
+        throw InputError("the point cloud has " + std::to_string(pts.size()) +
+                         " points; at least 4 distinct points are needed");
     const BoundingBox box = bounding_box(pts);
     const Vec3 a = pts[0];
     Vec3 b = a;
@@ -66,7 +68,8 @@ BoundingBox require_reconstructible(PointSpan pts) {
         nan = nan || d != d;
         if (d > best) best = d, b = p;
     }
-    if (nan || !is_finite(box.min) || !is_finite(box.max)) throw InputError("the point cloud holds a non-finite coordinate");
+    if (nan || !is_finite(box.min) || !is_finite(box.max))
+        throw InputError("the point cloud holds a non-finite coordinate");
     if (best == 0.0f) throw InputError("all points of the cloud are identical");
     // A point off the line through a and b, the point farthest from a.
     const Vec3 dir = b - a;
@@ -175,7 +178,8 @@ void learn_to_target(NeuralMesh& engine, std::size_t cloud_size, const Parameter
                              "; ask for at most about " + std::to_string(largest) + " vertices, or a larger Cec");
         }
         while (next_snapshot < snapshots.size() && engine.mesh().n_vertices() >= snapshots[next_snapshot]) {
-            if (callbacks.on_snapshot) callbacks.on_snapshot(snapshots[next_snapshot], norm.to_input(engine.mesh().to_indexed()));
+            if (callbacks.on_snapshot)
+                callbacks.on_snapshot(snapshots[next_snapshot], norm.to_input(engine.mesh().to_indexed()));
             ++next_snapshot;
         }
         if (!reporter.keep_going(false)) return;
@@ -268,8 +272,7 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
     Mesh finished;
     result.stats.finished =
         finish && finish_stage(learnt, std::move(cloud_index), cloud, norm, params,
-                               std::max(kFinishMinSeconds, learning_seconds), reporter, result.stats,
-                               finished);
+                               std::max(kFinishMinSeconds, learning_seconds), reporter, result.stats, finished);
     if (result.stats.finished) learnt = Mesh();  // freed before the output mesh is built
     result.mesh = norm.to_input(result.stats.finished ? finished.to_indexed() : learnt.to_indexed());
     result.stats.seconds = learning_seconds;

@@ -53,8 +53,8 @@ Mesh Mesh::from_indexed(const IndexedMesh& in) {
     // and T / 2 + 2 vertices, so a valid input within the limit has at most kMaxVertices.
     check_halfedge_count(3 * std::uint64_t(in.triangles.size()), "from_indexed");
     if (in.positions.size() > kMaxVertices)
-        throw InputError("mesh: from_indexed: " + std::to_string(in.positions.size()) + " vertices; a mesh holds at most " +
-                         std::to_string(kMaxVertices) + " (2^31 half-edges)");
+        throw InputError("mesh: from_indexed: " + std::to_string(in.positions.size()) +
+                         " vertices; a mesh holds at most " + std::to_string(kMaxVertices) + " (2^31 half-edges)");
     const std::uint32_t nv = std::uint32_t(in.positions.size());
     Mesh m;
     m.reserve(nv);
@@ -150,8 +150,8 @@ void Mesh::build_faces() {
 }
 
 void Mesh::throw_too_many_halfedges(std::uint64_t halfedges, const char* what) {
-    throw InputError(std::string("mesh: ") + what + ": " + std::to_string(halfedges) + " half-edges; a mesh holds at most 2^31 (" +
-                     std::to_string(kMaxVertices) + " vertices)");
+    throw InputError(std::string("mesh: ") + what + ": " + std::to_string(halfedges) +
+                     " half-edges; a mesh holds at most 2^31 (" + std::to_string(kMaxVertices) + " vertices)");
 }
 
 // ---- slots and free lists -----------------------------------------------------------------------
@@ -287,9 +287,7 @@ Vec3 Mesh::vertex_normal(Vertex v) const {
     // their sum is the area-weighted normal sum.
     const Vec3& p = position(v);
     Vec3 n;
-    for_each_outgoing_cw(v, [&](Halfedge h) {
-        n += cross(position(to(h)) - p, position(to(next(h))) - p);
-    });
+    for_each_outgoing_cw(v, [&](Halfedge h) { n += cross(position(to(h)) - p, position(to(next(h))) - p); });
     return normalized(n);
 }
 
@@ -359,8 +357,8 @@ bool Mesh::can_collapse(Halfedge h) const {
     const Vertex a = from(h), b = to(h);
     const Vertex c = to(next(h)), d = to(next(twin(h)));
     const std::uint32_t va = valence(a), vb = valence(b);
-    if (va + vb < 4 + 3) return false;                        // b would end below valence 3
-    if (valence(c) <= 3 || valence(d) <= 3) return false;     // c and d each lose one neighbour
+    if (va + vb < 4 + 3) return false;                     // b would end below valence 3
+    if (valence(c) <= 3 || valence(d) <= 3) return false;  // c and d each lose one neighbour
     // Link condition: the neighbours a and b share are exactly c and d.
     std::uint32_t shared = 0;
     bool ok = true;
@@ -491,10 +489,9 @@ IndexedMesh Mesh::to_indexed(std::vector<std::uint32_t>* vertex_map) const {
 bool Mesh::same_arrays(const Mesh& o) const {
     // The dead marks and free lists live in vhe_, he_ and fhe_ and the heads.
     return vhe_ == o.vhe_ && he_ == o.he_ && he_face_ == o.he_face_ && fhe_ == o.fhe_ && vfree_ == o.vfree_ &&
-           ffree_ == o.ffree_ && efree_ == o.efree_ && n_vertices_ == o.n_vertices_ &&
-           n_faces_ == o.n_faces_ && n_edges_ == o.n_edges_ && faces_ == o.faces_ && vpos_.size() == o.vpos_.size() &&
-           std::equal(vpos_.begin(), vpos_.end(), o.vpos_.begin(),
-                      [](const Vec3& p, const Vec3& q) { return p == q; });
+           ffree_ == o.ffree_ && efree_ == o.efree_ && n_vertices_ == o.n_vertices_ && n_faces_ == o.n_faces_ &&
+           n_edges_ == o.n_edges_ && faces_ == o.faces_ && vpos_.size() == o.vpos_.size() &&
+           std::equal(vpos_.begin(), vpos_.end(), o.vpos_.begin(), [](const Vec3& p, const Vec3& q) { return p == q; });
 }
 
 }  // namespace nmesh

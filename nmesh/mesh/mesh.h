@@ -71,8 +71,8 @@ using Edge = Handle<struct EdgeTag>;
 
 // What flip() changed, so that unflip() can restore the mesh bit for bit.
 struct FlipRecord {
-    Halfedge h;               // the flipped half-edge (same slot before and after)
-    Halfedge old_out_from;    // outgoing half-edge stored at the old edge's endpoints before
+    Halfedge h;             // the flipped half-edge (same slot before and after)
+    Halfedge old_out_from;  // outgoing half-edge stored at the old edge's endpoints before
     Halfedge old_out_to;
     Halfedge old_face_he[2];  // half-edge stored at face(h) and face(twin(h)) before (with faces)
 };
@@ -146,7 +146,7 @@ public:
         return Face(he_face_[h.idx]);
     }
     Halfedge halfedge(Vertex v) const { return Halfedge(vhe_[v.idx]); }  // an outgoing one
-    Halfedge halfedge(Face f) const {  // needs faces
+    Halfedge halfedge(Face f) const {                                    // needs faces
         assert(faces_);
         return Halfedge(fhe_[f.idx]);
     }
@@ -166,7 +166,8 @@ public:
 
     // ---- circulators ------------------------------------------------------------------------
     // Visit the one-ring of v counter-clockwise: f(Halfedge outgoing) / f(Vertex) / f(Face).
-    template <class F> void for_each_outgoing(Vertex v, F&& f) const {
+    template <class F>
+    void for_each_outgoing(Vertex v, F&& f) const {
         const Halfedge start = halfedge(v);
         Halfedge h = start;
         do {
@@ -176,7 +177,8 @@ public:
     }
     // The same half-edges clockwise: one memory access per step instead of two, for loops that
     // do not care about the order (sums over the ring).
-    template <class F> void for_each_outgoing_cw(Vertex v, F&& f) const {
+    template <class F>
+    void for_each_outgoing_cw(Vertex v, F&& f) const {
         const Halfedge start = halfedge(v);
         Halfedge h = start;
         do {
@@ -184,10 +186,12 @@ public:
             h = cw_rotated(h);
         } while (h != start);
     }
-    template <class F> void for_each_neighbor(Vertex v, F&& f) const {
+    template <class F>
+    void for_each_neighbor(Vertex v, F&& f) const {
         for_each_outgoing(v, [&](Halfedge h) { f(to(h)); });
     }
-    template <class F> void for_each_face_around(Vertex v, F&& f) const {
+    template <class F>
+    void for_each_face_around(Vertex v, F&& f) const {
         for_each_outgoing(v, [&](Halfedge h) { f(face(h)); });
     }
 
@@ -195,14 +199,14 @@ public:
     const Vec3& position(Vertex v) const { return vpos_[v.idx]; }
     void set_position(Vertex v, const Vec3& p) { vpos_[v.idx] = p; }
     const std::vector<Vec3>& positions() const { return vpos_; }  // indexed by slot
-    Vec3 face_normal(Face f) const;       // unit (zero for a degenerate face)
+    Vec3 face_normal(Face f) const;                               // unit (zero for a degenerate face)
     float face_area(Face f) const;
     Vec3 face_centroid(Face f) const;
     // The centroid of h's triangle, with or without the face index: summed from its smallest
     // half-edge, so the same bits from any of the three (and the same as face_centroid(face(h))
     // after build_faces()).
     Vec3 triangle_centroid(Halfedge h) const;
-    Vec3 vertex_normal(Vertex v) const;   // area-weighted mean of the incident face normals, unit
+    Vec3 vertex_normal(Vertex v) const;  // area-weighted mean of the incident face normals, unit
 
     // ---- topology operations ----------------------------------------------------------------
     // Vertex split. `to_c` and `to_d` are two different outgoing half-edges of the same vertex b
@@ -295,7 +299,7 @@ private:
     void replace_in_face(Halfedge old, Halfedge by);
 
     std::vector<Vec3> vpos_;
-    std::vector<std::uint32_t> vhe_;      // outgoing half-edge, or next free vertex | kFreeBit
+    std::vector<std::uint32_t> vhe_;  // outgoing half-edge, or next free vertex | kFreeBit
     // A half-edge's target and next side by side: the one-ring walks read both (one cache line).
     struct HalfedgeLinks {
         std::uint32_t to;
@@ -304,7 +308,7 @@ private:
     };
     std::vector<HalfedgeLinks> he_;
     std::vector<std::uint32_t> he_face_;
-    std::vector<std::uint32_t> fhe_;      // a half-edge of the face, or next free face | kFreeBit
+    std::vector<std::uint32_t> fhe_;  // a half-edge of the face, or next free face | kFreeBit
     // Free-list heads, marked like the links (slot | kFreeBit, or kInvalidIndex when empty).
     std::uint32_t vfree_ = kInvalidIndex, ffree_ = kInvalidIndex, efree_ = kInvalidIndex;
     std::uint32_t n_vertices_ = 0, n_faces_ = 0, n_edges_ = 0;

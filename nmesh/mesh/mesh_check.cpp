@@ -13,7 +13,8 @@ struct Checker {
     std::ostringstream err;
     bool failed = false;
 
-    template <class... T> bool fail(const T&... parts) {
+    template <class... T>
+    bool fail(const T&... parts) {
         if (!failed) {
             failed = true;
             (err << ... << parts);
@@ -27,8 +28,8 @@ struct Checker {
 
     // Walks a free list; every slot on it must be free, and it must hold all free slots.
     template <class Removed, class Next>
-    bool free_list(const char* what, std::uint32_t head, std::uint32_t capacity, std::uint32_t alive,
-                   Removed removed, Next next_free) {
+    bool free_list(const char* what, std::uint32_t head, std::uint32_t capacity, std::uint32_t alive, Removed removed,
+                   Next next_free) {
         std::uint32_t count = 0;
         for (std::uint32_t s = head; s != kInvalidIndex; s = next_free(s)) {
             if (s >= capacity) return fail(what, " free list: slot ", s, " is out of range");
@@ -48,15 +49,18 @@ struct Checker {
         if (v != m.n_vertices()) return fail("vertex count ", m.n_vertices(), " but ", v, " alive slots");
         if (m.has_faces() && f != m.n_faces()) return fail("face count ", m.n_faces(), " but ", f, " alive slots");
         if (e != m.n_edges()) return fail("edge count ", m.n_edges(), " but ", e, " alive slots");
-        return free_list("vertex", m.free_vertex_head(), m.vertex_capacity(), v,
-                         [&](std::uint32_t s) { return m.is_removed(Vertex(s)); },
-                         [&](std::uint32_t s) { return m.next_free_vertex(s); }) &&
-               free_list("face", m.free_face_head(), m.face_capacity(), f,
-                         [&](std::uint32_t s) { return m.is_removed(Face(s)); },
-                         [&](std::uint32_t s) { return m.next_free_face(s); }) &&
-               free_list("edge", m.free_edge_head(), m.edge_capacity(), e,
-                         [&](std::uint32_t s) { return m.is_removed(Edge(s)); },
-                         [&](std::uint32_t s) { return m.next_free_edge(s); });
+        return free_list(
+                   "vertex", m.free_vertex_head(), m.vertex_capacity(), v,
+                   [&](std::uint32_t s) { return m.is_removed(Vertex(s)); },
+                   [&](std::uint32_t s) { return m.next_free_vertex(s); }) &&
+               free_list(
+                   "face", m.free_face_head(), m.face_capacity(), f,
+                   [&](std::uint32_t s) { return m.is_removed(Face(s)); },
+                   [&](std::uint32_t s) { return m.next_free_face(s); }) &&
+               free_list(
+                   "edge", m.free_edge_head(), m.edge_capacity(), e,
+                   [&](std::uint32_t s) { return m.is_removed(Edge(s)); },
+                   [&](std::uint32_t s) { return m.next_free_edge(s); });
     }
 
     bool halfedges() {
@@ -77,8 +81,8 @@ struct Checker {
                 return fail("half-edge ", i, ": its next cycle spans several faces");
             const std::uint32_t origin = m.to(n2).idx;  // target of prev
             if (m.to(Mesh::twin(h)).idx != origin)
-                return fail("half-edge ", i, ": inconsistent orientation (twin ends at ",
-                            m.to(Mesh::twin(h)).idx, ", previous half-edge ends at ", origin, ")");
+                return fail("half-edge ", i, ": inconsistent orientation (twin ends at ", m.to(Mesh::twin(h)).idx,
+                            ", previous half-edge ends at ", origin, ")");
             if (origin == to) return fail("half-edge ", i, " is a loop at vertex ", to);
         }
         return true;
@@ -90,7 +94,8 @@ struct Checker {
             if (m.is_removed(Face(f))) continue;
             const std::uint32_t h = m.halfedge(Face(f)).idx;
             if (!halfedge_ok(h)) return fail("face ", f, ": half-edge ", h, " is not alive");
-            if (m.face(Halfedge(h)).idx != f) return fail("face ", f, ": its half-edge ", h, " belongs to face ", m.face(Halfedge(h)).idx);
+            if (m.face(Halfedge(h)).idx != f)
+                return fail("face ", f, ": its half-edge ", h, " belongs to face ", m.face(Halfedge(h)).idx);
         }
         if (2 * std::uint64_t(m.n_edges()) != 3 * std::uint64_t(m.n_faces()))
             return fail("2E != 3F (E = ", m.n_edges(), ", F = ", m.n_faces(), ")");
@@ -106,7 +111,8 @@ struct Checker {
             if (m.is_removed(Vertex(v))) continue;
             const Halfedge start = m.halfedge(Vertex(v));
             if (!halfedge_ok(start.idx)) return fail("vertex ", v, ": half-edge ", start.idx, " is not alive");
-            if (m.from(start).idx != v) return fail("vertex ", v, ": its half-edge ", start.idx, " leaves vertex ", m.from(start).idx);
+            if (m.from(start).idx != v)
+                return fail("vertex ", v, ": its half-edge ", start.idx, " leaves vertex ", m.from(start).idx);
             std::uint32_t ring = 0;
             Halfedge h = start;
             do {
@@ -117,8 +123,8 @@ struct Checker {
                 h = m.ccw_rotated(h);
             } while (h != start);
             if (ring != out_degree[v])
-                return fail("vertex ", v, ": its one-ring is not a single cycle (", ring, " half-edges in the rotation, ",
-                            out_degree[v], " leave the vertex)");
+                return fail("vertex ", v, ": its one-ring is not a single cycle (", ring,
+                            " half-edges in the rotation, ", out_degree[v], " leave the vertex)");
             if (ring < 3) return fail("vertex ", v, " has valence ", ring);
         }
         return true;
@@ -146,7 +152,8 @@ struct Checker {
                 }
             });
         }
-        if (reached != m.n_vertices()) return fail("the mesh is not connected (", reached, " of ", m.n_vertices(), " vertices reachable)");
+        if (reached != m.n_vertices())
+            return fail("the mesh is not connected (", reached, " of ", m.n_vertices(), " vertices reachable)");
         return true;
     }
 };

@@ -29,8 +29,8 @@ namespace nmesh {
 
 using metrics_detail::analyze_topology;
 using metrics_detail::inward_faces;
-using metrics_detail::signed_volume;
 using metrics_detail::is_degenerate;
+using metrics_detail::signed_volume;
 
 namespace {
 
@@ -43,7 +43,6 @@ constexpr double kSmallAngleDeg = 10.0;
 
 Vector3d to_eigen(const Vec3& v) { return {double(v.x), double(v.y), double(v.z)}; }
 
-
 // ---- sampling -----------------------------------------------------------------------------------
 
 // A double uniform in [0, 1) from the top 53 bits of a 64-bit draw (the same on every platform,
@@ -53,18 +52,16 @@ void check_inputs(PointSpan points, const IndexedMesh& mesh) {
     if (points.empty()) throw InputError("metrics: the point cloud is empty");
     for (std::size_t i = 0; i < points.size(); ++i)
         if (!is_finite(points[i]))
-            throw InputError("metrics: cloud point " + std::to_string(i) +
-                             " has a NaN or infinite coordinate");
+            throw InputError("metrics: cloud point " + std::to_string(i) + " has a NaN or infinite coordinate");
     if (mesh.triangles.empty()) throw InputError("metrics: the mesh has no triangles");
     for (std::size_t i = 0; i < mesh.positions.size(); ++i)
         if (!is_finite(mesh.positions[i]))
-            throw InputError("metrics: mesh vertex " + std::to_string(i) +
-                             " has a NaN or infinite coordinate");
+            throw InputError("metrics: mesh vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
     for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
         for (std::uint32_t v : mesh.triangles[f])
             if (v >= mesh.positions.size())
-                throw InputError("metrics: triangle " + std::to_string(f) + " refers to vertex " +
-                                 std::to_string(v) + " of " + std::to_string(mesh.positions.size()));
+                throw InputError("metrics: triangle " + std::to_string(f) + " refers to vertex " + std::to_string(v) +
+                                 " of " + std::to_string(mesh.positions.size()));
 }
 
 // A triangle by the positions of its corners.
@@ -109,8 +106,8 @@ std::vector<Corners> surface_order(const IndexedMesh& mesh) {
 // on average (plus a fixed allowance), no piece is cut any more and the largest distance found
 // is returned; on a surface at a near-constant distance from a sparse cloud the cuts could
 // otherwise run to (area / tol^2) pieces.
-double surface_to_cloud_max(const std::vector<Corners>& tris, PointSpan points, const PointGrid& cloud,
-                            double found, double tol) {
+double surface_to_cloud_max(const std::vector<Corners>& tris, PointSpan points, const PointGrid& cloud, double found,
+                            double tol) {
     constexpr std::size_t kMaxPiecesPerTriangle = 256;
     const std::size_t budget = kMaxPiecesPerTriangle * tris.size() + (std::size_t(1) << 22);
     struct Piece {
@@ -130,8 +127,10 @@ double surface_to_cloud_max(const std::vector<Corners>& tris, PointSpan points, 
             const double d = std::sqrt(double(n.squared_distance));
             best = std::max(best, d);
             const Vector3d q = to_eigen(points[n.index]);
-            const double lipschitz = d + std::sqrt(std::max({(s.a - g).squaredNorm(), (s.b - g).squaredNorm(), (s.c - g).squaredNorm()}));
-            const double convex = std::sqrt(std::max({(s.a - q).squaredNorm(), (s.b - q).squaredNorm(), (s.c - q).squaredNorm()}));
+            const double lipschitz =
+                d + std::sqrt(std::max({(s.a - g).squaredNorm(), (s.b - g).squaredNorm(), (s.c - g).squaredNorm()}));
+            const double convex =
+                std::sqrt(std::max({(s.a - q).squaredNorm(), (s.b - q).squaredNorm(), (s.c - q).squaredNorm()}));
             if (std::min(lipschitz, convex) <= best + tol || pieces > budget) continue;
             const Vector3d ab = (s.a + s.b) * 0.5, bc = (s.b + s.c) * 0.5, ca = (s.c + s.a) * 0.5;
             stack.push_back({s.a, ab, ca});
@@ -155,8 +154,7 @@ std::vector<Vec3> centroids(const IndexedMesh& mesh) {
 
 // ---- geometric primitives -----------------------------------------------------------------------
 
-bool triangles_intersect(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& e,
-                         const Vec3& f) {
+bool triangles_intersect(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& e, const Vec3& f) {
     return triangles_intersect_exact(a, b, c, d, e, f);
 }
 
@@ -208,8 +206,8 @@ QualityReport evaluate(PointSpan points, const IndexedMesh& mesh, const EvalOpti
         const NearestPoint c = centroid_index.find_nearest(p);
         dm_sum += std::sqrt(double(c.squared_distance));
         const auto& t = mesh.triangles[c.index];
-        const double bound = point_triangle_squared_distance(p, mesh.positions[t[0]], mesh.positions[t[1]],
-                                                             mesh.positions[t[2]]);
+        const double bound =
+            point_triangle_squared_distance(p, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
         const double d2 = bvh.nearest_squared_distance(p, bound);
         const double d = std::sqrt(d2);
         p2s_sum += d;
@@ -253,8 +251,8 @@ QualityReport evaluate(PointSpan points, const IndexedMesh& mesh, const EvalOpti
             }
             const double root = std::sqrt(rng.uniform()), w = rng.uniform();
             const Corners& t = tris[f];
-            const Vector3d q = (1.0 - root) * to_eigen(t[0]) + root * (1.0 - w) * to_eigen(t[1]) +
-                               root * w * to_eigen(t[2]);
+            const Vector3d q =
+                (1.0 - root) * to_eigen(t[0]) + root * (1.0 - w) * to_eigen(t[1]) + root * w * to_eigen(t[2]);
             const Vec3 sample(float(q.x()), float(q.y()), float(q.z()));
             const double d = std::sqrt(double(cloud.nearest_squared_distance(sample)));
             sum += d;

@@ -63,8 +63,8 @@ std::size_t inward_faces(const IndexedMesh& mesh, const TriangleBvh& bvh) {
         const Point3 n = cross3(minus(b, a), minus(c, a));
         const double len = std::sqrt(dot3(n, n));
         if (!(len > 0.0)) continue;
-        const double edge = std::sqrt(std::max({dot3(minus(b, a), minus(b, a)), dot3(minus(c, b), minus(c, b)),
-                                                dot3(minus(a, c), minus(a, c))}));
+        const double edge = std::sqrt(
+            std::max({dot3(minus(b, a), minus(b, a)), dot3(minus(c, b), minus(c, b)), dot3(minus(a, c), minus(a, c))}));
         const double off = 1e-3 * edge / len;
         const Point3 p{(a.x + b.x + c.x) / 3.0 + n.x * off, (a.y + b.y + c.y) / 3.0 + n.y * off,
                        (a.z + b.z + c.z) / 3.0 + n.z * off};

@@ -14,11 +14,21 @@ std::string json_string(const std::string& text) {
     for (const char ch : text) {
         const auto c = static_cast<unsigned char>(ch);
         switch (c) {
-            case '"': out += "\\\""; break;
-            case '\\': out += "\\\\"; break;
-            case '\n': out += "\\n"; break;
-            case '\t': out += "\\t"; break;
-            case '\r': out += "\\r"; break;
+            case '"':
+                out += "\\\"";
+                break;
+            case '\\':
+                out += "\\\\";
+                break;
+            case '\n':
+                out += "\\n";
+                break;
+            case '\t':
+                out += "\\t";
+                break;
+            case '\r':
+                out += "\\r";
+                break;
             default:
                 if (c < 0x20) {
                     char buf[8];
@@ -45,10 +55,10 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << "  \"parameters\": {\"target_vertices\": " << p.target_vertices << ", \"alpha_w\": " << p.alpha_w
       << ", \"alpha_n\": " << p.alpha_n << ", \"alpha\": " << p.alpha << ", \"cvs\": " << p.cvs
       << ", \"cec\": " << p.cec << ", \"edge_swap\": " << (p.edge_swap ? "true" : "false")
-      << ", \"fold_guard\": " << (p.fold_guard ? "true" : "false")
-      << ", \"settle\": " << p.settle << ", \"finish\": " << (p.finish ? "true" : "false")
-      << ", \"finish_rounds\": " << p.finish_rounds << ", \"fit_rounds\": " << p.fit_rounds
-      << ", \"index_points_per_vertex\": " << p.index_points_per_vertex << "},\n"
+      << ", \"fold_guard\": " << (p.fold_guard ? "true" : "false") << ", \"settle\": " << p.settle
+      << ", \"finish\": " << (p.finish ? "true" : "false") << ", \"finish_rounds\": " << p.finish_rounds
+      << ", \"fit_rounds\": " << p.fit_rounds << ", \"index_points_per_vertex\": " << p.index_points_per_vertex
+      << "},\n"
       << "  \"vertices\": " << r.mesh.positions.size() << ",\n"
       << "  \"faces\": " << r.mesh.triangles.size() << ",\n"
       << "  \"iterations\": " << s.iterations << ",\n"

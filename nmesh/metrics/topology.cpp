@@ -29,9 +29,7 @@ private:
     std::vector<std::uint32_t> parent_;
 };
 
-bool has_repeated_vertex(const std::array<std::uint32_t, 3>& t) {
-    return t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
-}
+bool has_repeated_vertex(const std::array<std::uint32_t, 3>& t) { return t[0] == t[1] || t[1] == t[2] || t[2] == t[0]; }
 
 }  // namespace
 
@@ -64,8 +62,7 @@ void analyze_topology(const IndexedMesh& mesh, QualityReport& r) {
             half_edges.push_back({(std::uint64_t(std::min(u, w)) << 32) | std::max(u, w), f, i});
         }
     }
-    std::sort(half_edges.begin(), half_edges.end(),
-              [](const HalfEdge& a, const HalfEdge& b) { return a.key < b.key; });
+    std::sort(half_edges.begin(), half_edges.end(), [](const HalfEdge& a, const HalfEdge& b) { return a.key < b.key; });
 
     // Edges: closed when all are shared by two triangles; manifold needs at most two, running in
     // opposite directions. Corners around a vertex are linked through the edges they share, so
@@ -104,8 +101,10 @@ void analyze_topology(const IndexedMesh& mesh, QualityReport& r) {
         for (std::uint32_t c = 0; c < 3 * nf && manifold; ++c) {
             const std::uint32_t v = mesh.triangles[c / 3][c % 3];
             const std::uint32_t root = corners.find(c);
-            if (fan[v] == std::numeric_limits<std::uint32_t>::max()) fan[v] = root;
-            else if (fan[v] != root) manifold = false;
+            if (fan[v] == std::numeric_limits<std::uint32_t>::max())
+                fan[v] = root;
+            else if (fan[v] != root)
+                manifold = false;
         }
     }
 

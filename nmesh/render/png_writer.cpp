@@ -46,10 +46,10 @@ constexpr std::uint16_t kLengthBase[29] = {3,  4,  5,  6,  7,  8,  9,  10, 11,  
 constexpr std::uint8_t kLengthExtra[29] = {0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2,
                                            2, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 0};
 // Distance codes 0..29: the smallest distance of each and its number of extra bits.
-constexpr std::uint16_t kDistBase[30] = {1,    2,    3,    4,    5,    7,     9,     13,    17,  25,
-                                         33,   49,   65,   97,   129,  193,   257,   385,   513, 769,
+constexpr std::uint16_t kDistBase[30] = {1,    2,    3,    4,    5,    7,    9,    13,    17,    25,
+                                         33,   49,   65,   97,   129,  193,  257,  385,   513,   769,
                                          1025, 1537, 2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577};
-constexpr std::uint8_t kDistExtra[30] = {0, 0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6,
+constexpr std::uint8_t kDistExtra[30] = {0, 0, 0, 0, 1, 1, 2, 2,  3,  3,  4,  4,  5,  5,  6,
                                          6, 7, 7, 8, 8, 9, 9, 10, 10, 11, 11, 12, 12, 13, 13};
 
 std::uint32_t reverse_bits(std::uint32_t code, int length) {
@@ -73,10 +73,14 @@ struct FixedCodes {
         for (std::uint32_t s = 0; s < 288; ++s) {
             std::uint32_t code = 0;
             int length = 0;
-            if (s < 144) code = 0x30 + s, length = 8;
-            else if (s < 256) code = 0x190 + (s - 144), length = 9;
-            else if (s < 280) code = s - 256, length = 7;
-            else code = 0xC0 + (s - 280), length = 8;
+            if (s < 144)
+                code = 0x30 + s, length = 8;
+            else if (s < 256)
+                code = 0x190 + (s - 144), length = 9;
+            else if (s < 280)
+                code = s - 256, length = 7;
+            else
+                code = 0xC0 + (s - 280), length = 8;
             literal[s] = {std::uint16_t(reverse_bits(code, length)), std::uint8_t(length)};
         }
         for (std::uint32_t d = 0; d < 30; ++d) distance[d] = {std::uint16_t(reverse_bits(d, 5)), 5};
@@ -97,7 +101,8 @@ struct SymbolTables {
             length[len] = std::uint8_t(std::upper_bound(std::begin(kLengthBase), std::end(kLengthBase), len) -
                                        std::begin(kLengthBase) - 1);
         const auto code_of = [](std::size_t d) {
-            return std::uint8_t(std::upper_bound(std::begin(kDistBase), std::end(kDistBase), d) - std::begin(kDistBase) - 1);
+            return std::uint8_t(std::upper_bound(std::begin(kDistBase), std::end(kDistBase), d) -
+                                std::begin(kDistBase) - 1);
         };
         for (std::size_t d = 1; d <= 256; ++d) distance[d - 1] = code_of(d);
         for (std::size_t k = 2; k < 256; ++k) distance[256 + k] = code_of((k << 7) + 1);
@@ -111,7 +116,8 @@ const SymbolTables& symbol_tables() {
 // distance in [1, 32768].
 int length_symbol(std::size_t length) { return symbol_tables().length[length]; }
 int distance_symbol(std::size_t distance) {
-    return distance <= 256 ? symbol_tables().distance[distance - 1] : symbol_tables().distance[256 + ((distance - 1) >> 7)];
+    return distance <= 256 ? symbol_tables().distance[distance - 1]
+                           : symbol_tables().distance[256 + ((distance - 1) >> 7)];
 }
 
 // Appends bits to a byte vector, least significant bit first.
@@ -165,8 +171,8 @@ public:
 
 private:
     std::uint32_t hash(std::size_t i) const {
-        const std::uint32_t v = std::uint32_t(data_[i]) | std::uint32_t(data_[i + 1]) << 8 |
-                                std::uint32_t(data_[i + 2]) << 16;
+        const std::uint32_t v =
+            std::uint32_t(data_[i]) | std::uint32_t(data_[i + 1]) << 8 | std::uint32_t(data_[i + 2]) << 16;
         return (v * 2654435761u) >> (32 - kHashBits);
     }
     // Records position i (which needs 3 bytes after it) as the newest with its prefix.

@@ -34,7 +34,6 @@ constexpr double kLightRight = -1.0, kLightUp = 1.0, kLightToward = 2.0;
 // keeps the shading (and the ramp colour) visible on meshes whose edges crowd together.
 constexpr double kEdgeShade = 0.2;
 
-
 void check_options(const IndexedMesh& mesh, const RenderOptions& o) {
     if (o.width < 1 || o.width > kMaxSide || o.height < 1 || o.height > kMaxSide)
         throw ParameterError("render: width and height must be in [1, " + std::to_string(kMaxSide) + "], got " +
@@ -48,8 +47,8 @@ void check_options(const IndexedMesh& mesh, const RenderOptions& o) {
     if (o.vertex_values) {
         const std::vector<float>& values = *o.vertex_values;
         if (values.size() != mesh.positions.size())
-            throw ParameterError("render: vertex_values has " + std::to_string(values.size()) +
-                                 " values for " + std::to_string(mesh.positions.size()) + " vertices");
+            throw ParameterError("render: vertex_values has " + std::to_string(values.size()) + " values for " +
+                                 std::to_string(mesh.positions.size()) + " vertices");
         for (std::size_t i = 0; i < values.size(); ++i)
             if (!std::isfinite(values[i]))
                 throw ParameterError("render: vertex_values[" + std::to_string(i) + "] is not finite");
@@ -171,8 +170,10 @@ void rasterize(std::uint32_t t, const Projected& a, const Projected& b, const Pr
         std::swap(v[1], v[2]);
         area = -area;
     }
-    const std::int64_t min_x = std::min({v[0]->fx, v[1]->fx, v[2]->fx}), max_x = std::max({v[0]->fx, v[1]->fx, v[2]->fx});
-    const std::int64_t min_y = std::min({v[0]->fy, v[1]->fy, v[2]->fy}), max_y = std::max({v[0]->fy, v[1]->fy, v[2]->fy});
+    const std::int64_t min_x = std::min({v[0]->fx, v[1]->fx, v[2]->fx}),
+                       max_x = std::max({v[0]->fx, v[1]->fx, v[2]->fx});
+    const std::int64_t min_y = std::min({v[0]->fy, v[1]->fy, v[2]->fy}),
+                       max_y = std::max({v[0]->fy, v[1]->fy, v[2]->fy});
     const std::int64_t i0 = std::max<std::int64_t>(0, first_sample_at_or_after(min_x));
     const std::int64_t i1 = std::min<std::int64_t>(buf.width - 1, last_sample_at_or_before(max_x));
     const std::int64_t j0 = std::max<std::int64_t>(0, first_sample_at_or_after(min_y));
@@ -216,14 +217,14 @@ void rasterize(std::uint32_t t, const Projected& a, const Projected& b, const Pr
 // What shading a sample of a triangle needs: its barycentric coordinates as linear functions of
 // the sample position, its normal turned towards the viewer, and its heights in output pixels.
 struct TriangleShading {
-    double b0[3], b1[3];   // b_k(x, y) = c[0] * x + c[1] * y + c[2]; b2 = 1 - b0 - b1
-    Vec3 normal;           // unit face normal, facing the viewer
-    bool back = false;     // whether the triangle faces away (its vertex normals get flipped)
-    double height[3];      // distance from vertex k to the opposite edge, in output pixels
+    double b0[3], b1[3];  // b_k(x, y) = c[0] * x + c[1] * y + c[2]; b2 = 1 - b0 - b1
+    Vec3 normal;          // unit face normal, facing the viewer
+    bool back = false;    // whether the triangle faces away (its vertex normals get flipped)
+    double height[3];     // distance from vertex k to the opposite edge, in output pixels
 };
 
-TriangleShading prepare(const IndexedMesh& mesh, std::size_t t, const std::vector<Projected>& proj,
-                        const Camera& cam, int ss) {
+TriangleShading prepare(const IndexedMesh& mesh, std::size_t t, const std::vector<Projected>& proj, const Camera& cam,
+                        int ss) {
     const auto& tri = mesh.triangles[t];
     const Projected& p0 = proj[tri[0]];
     const Projected& p1 = proj[tri[1]];
@@ -277,8 +278,10 @@ std::vector<float> ramp_positions(const RenderOptions& o, const std::vector<char
     if (o.value_max) hi = *o.value_max;
     std::vector<float> t(values.size(), 0.0f);
     for (std::size_t v = 0; v < values.size(); ++v) {
-        if (hi > lo) t[v] = std::clamp(float((double(values[v]) - lo) / (double(hi) - lo)), 0.0f, 1.0f);
-        else t[v] = values[v] > hi ? 1.0f : 0.0f;
+        if (hi > lo)
+            t[v] = std::clamp(float((double(values[v]) - lo) / (double(hi) - lo)), 0.0f, 1.0f);
+        else
+            t[v] = values[v] > hi ? 1.0f : 0.0f;
     }
     return t;
 }
@@ -340,8 +343,8 @@ Image render(const IndexedMesh& mesh, const RenderOptions& options) {
     }
     const std::vector<Vec3> normals = options.smooth ? vertex_normals(mesh) : std::vector<Vec3>();
     const std::vector<float> ramp = options.vertex_values ? ramp_positions(options, used) : std::vector<float>();
-    const Vec3 light = normalized(cam.right * float(kLightRight) + cam.up * float(kLightUp) +
-                                  cam.toward * float(kLightToward));
+    const Vec3 light =
+        normalized(cam.right * float(kLightRight) + cam.up * float(kLightUp) + cam.toward * float(kLightToward));
 
     const auto shade = [&](std::uint32_t t, double x, double y, float out[3]) {
         const TriangleShading& s = shading[t];
@@ -363,8 +366,8 @@ Image render(const IndexedMesh& mesh, const RenderOptions& options) {
         }
         for (int i = 0; i < 3; ++i) out[i] = float(base[i] * intensity);
         if (options.wireframe) {
-            const double d = std::min({std::max(0.0, b0) * s.height[0], std::max(0.0, b1) * s.height[1],
-                                       std::max(0.0, b2) * s.height[2]});
+            const double d = std::min(
+                {std::max(0.0, b0) * s.height[0], std::max(0.0, b1) * s.height[1], std::max(0.0, b2) * s.height[2]});
             const float keep = float(1.0 - (1.0 - kEdgeShade) * std::clamp(1.0 - d, 0.0, 1.0));
             for (int i = 0; i < 3; ++i) out[i] *= keep;
         }
@@ -384,7 +387,8 @@ Image render(const IndexedMesh& mesh, const RenderOptions& options) {
                 for (int sx = 0; sx < ss; ++sx) {
                     const int col = x * ss + sx;
                     const std::uint32_t t = buf.id[std::size_t(row) * std::size_t(buf.width) + std::size_t(col)];
-                    float c[3] = {float(options.background[0]), float(options.background[1]), float(options.background[2])};
+                    float c[3] = {float(options.background[0]), float(options.background[1]),
+                                  float(options.background[2])};
                     if (t != kNoTriangle) shade(t, col + 0.5, row + 0.5, c);
                     for (int i = 0; i < 3; ++i) sum[i] += c[i];
                 }

@@ -27,8 +27,8 @@ std::size_t index_point_count(std::size_t n, const Parameters& params) {
     return budget < n ? std::size_t(budget) : n;
 }
 
-std::unique_ptr<PointGrid> index_cloud(PointSpan points, const PointTransform& transform,
-                                       const BoundingBox& bounds, const Parameters& params) {
+std::unique_ptr<PointGrid> index_cloud(PointSpan points, const PointTransform& transform, const BoundingBox& bounds,
+                                       const Parameters& params) {
     const std::size_t count = index_point_count(points.size(), params);
     if (count == points.size()) return std::make_unique<PointGrid>(points, transform, bounds);
     // Any fixed odd constant would do: it only keeps the sample's stream apart from the engine's.

@@ -40,8 +40,8 @@ std::size_t index_point_count(std::size_t n, const Parameters& params);
 // derived from params.seed (a stream apart from the learning's samples). `bounds`: the box of all
 // the transformed points (it holds the sample's too). The index names a point by its place in
 // the sample (PointGrid::indexed_points() gives them in that order).
-std::unique_ptr<PointGrid> index_cloud(PointSpan points, const PointTransform& transform,
-                                       const BoundingBox& bounds, const Parameters& params);
+std::unique_ptr<PointGrid> index_cloud(PointSpan points, const PointTransform& transform, const BoundingBox& bounds,
+                                       const Parameters& params);
 
 // Statistics::indexed_points and index_bytes for `index`.
 void record_index(const PointGrid& index, Statistics& stats);

@@ -88,8 +88,7 @@ PointGrid::PointGrid(PointSpan points, const PointTransform& transform) {
     for (std::size_t i = 0; i < n; ++i) {
         const Vec3 p = transform(points[i]);
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-            throw InputError("PointGrid: point " + std::to_string(i) +
-                             " has a NaN or infinite coordinate");
+            throw InputError("PointGrid: point " + std::to_string(i) + " has a NaN or infinite coordinate");
         box.extend(p);
     }
     build(points, transform, box);
@@ -110,8 +109,7 @@ void PointGrid::build(PointSpan points, const PointTransform& transform, const B
     }
     cell_size_ = choose_cell_size(extent, double(n));
     inv_cell_size_ = 1.0 / cell_size_;
-    for (int a = 0; a < 3; ++a)
-        dims_[a] = std::uint32_t(std::max(1.0, std::ceil(extent[a] * inv_cell_size_)));
+    for (int a = 0; a < 3; ++a) dims_[a] = std::uint32_t(std::max(1.0, std::ceil(extent[a] * inv_cell_size_)));
     for (int a = 0; a < 3; ++a) bricks_[a] = (dims_[a] + kBrick - 1) / kBrick;
     level_dims_.push_back({dims_[0], dims_[1], dims_[2]});
     while (level_dims_.back() != std::array<std::uint32_t, 3>{1, 1, 1}) {
@@ -127,7 +125,7 @@ void PointGrid::build(PointSpan points, const PointTransform& transform, const B
     // Occupancy bits of the grid and of the pyramid's first level, then the running count of
     // occupied cells per word. The points' cells are recomputed in the next pass rather than kept:
     // reading the points again costs less than writing and reading 8 bytes per point.
-    const auto cell_of = [&](const Vec3& p, std::uint32_t (&c3)[3]) {
+    const auto cell_of = [&](const Vec3& p, std::uint32_t(&c3)[3]) {
         for (int a = 0; a < 3; ++a) {
             const double u = (double(p[a]) - origin_[a]) * inv_cell_size_;
             c3[a] = std::min(std::uint32_t(u), dims_[a] - 1);  // u >= 0: truncation is floor
@@ -207,11 +205,11 @@ std::size_t PointGrid::memory_bytes() const {
 
 struct PointGrid::Scan {
     Vec3 q;
-    double u[3] = {0.0, 0.0, 0.0};       // q in grid units (cell edge 1, origin at the grid corner)
-    std::uint32_t home[3] = {0, 0, 0};   // the grid cell nearest to q
+    double u[3] = {0.0, 0.0, 0.0};         // q in grid units (cell edge 1, origin at the grid corner)
+    std::uint32_t home[3] = {0, 0, 0};     // the grid cell nearest to q
     std::uint32_t done_lo[3] = {1, 1, 1};  // the block of grid cells scanned so far, inclusive
     std::uint32_t done_hi[3] = {0, 0, 0};  // (empty at first)
-    double scale = 0.0;  // squared grid units -> squared input units, made conservative
+    double scale = 0.0;                    // squared grid units -> squared input units, made conservative
     float best_sq = std::numeric_limits<float>::infinity();
     std::uint32_t best = std::numeric_limits<std::uint32_t>::max();  // index of the best point
 
@@ -221,8 +219,7 @@ struct PointGrid::Scan {
 };
 
 std::uint64_t PointGrid::cell_id(std::uint32_t i, std::uint32_t j, std::uint32_t k) const {
-    const std::uint64_t brick =
-        (std::uint64_t(k / kBrick) * bricks_[1] + j / kBrick) * bricks_[0] + i / kBrick;
+    const std::uint64_t brick = (std::uint64_t(k / kBrick) * bricks_[1] + j / kBrick) * bricks_[0] + i / kBrick;
     return brick * 64 + (k % kBrick) * 16 + (j % kBrick) * 4 + i % kBrick;
 }
 
@@ -243,8 +240,7 @@ std::int64_t PointGrid::slot_of(std::uint64_t c) const {
     return std::int64_t(w.rank) + popcount64(w.bits & (bit - 1));
 }
 
-bool PointGrid::pyramid_occupied(int level, std::uint32_t i, std::uint32_t j,
-                                 std::uint32_t k) const {
+bool PointGrid::pyramid_occupied(int level, std::uint32_t i, std::uint32_t j, std::uint32_t k) const {
     if (level == 0) {
         const std::uint64_t c = cell_id(i, j, k);
         return (occupancy_[std::size_t(c >> 6)].bits >> (c & 63)) & 1;
@@ -275,8 +271,7 @@ PointGrid::Span PointGrid::span(int axis, int level, std::uint32_t c, const Scan
     return {g * g, first >= s.done_lo[axis] && last <= s.done_hi[axis]};
 }
 
-void PointGrid::descend(int level, std::uint32_t i, std::uint32_t j, std::uint32_t k,
-                        Scan& s) const {
+void PointGrid::descend(int level, std::uint32_t i, std::uint32_t j, std::uint32_t k, Scan& s) const {
     struct Node {
         double g2;  // squared grid distance from q to the node's box
         std::uint32_t c[3];
@@ -352,13 +347,11 @@ void PointGrid::search_level(int level, Scan& s) const {
                 candidates[at] = {g2, {i, j, k}};
             }
     for (int c = 0; c < count; ++c)
-        if (!s.pruned(candidates[c].g2))
-            descend(level, candidates[c].c[0], candidates[c].c[1], candidates[c].c[2], s);
+        if (!s.pruned(candidates[c].g2)) descend(level, candidates[c].c[0], candidates[c].c[1], candidates[c].c[2], s);
 
     for (int a = 0; a < 3; ++a) {
         s.done_lo[a] = lo[a] << level;
-        s.done_hi[a] = std::uint32_t(
-            std::min((std::uint64_t(hi[a]) + 1) << level, std::uint64_t(dims_[a])) - 1);
+        s.done_hi[a] = std::uint32_t(std::min((std::uint64_t(hi[a]) + 1) << level, std::uint64_t(dims_[a])) - 1);
     }
 }
 
@@ -367,8 +360,7 @@ bool PointGrid::settled(const Scan& s) const {
     double outside = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 3; ++a) {
         if (s.done_lo[a] > 0) outside = std::min(outside, s.u[a] - double(s.done_lo[a]));
-        if (s.done_hi[a] + 1 < dims_[a])
-            outside = std::min(outside, double(s.done_hi[a]) + 1.0 - s.u[a]);
+        if (s.done_hi[a] + 1 < dims_[a]) outside = std::min(outside, double(s.done_hi[a]) + 1.0 - s.u[a]);
     }
     if (outside == std::numeric_limits<double>::infinity()) return true;  // the whole grid
     const double g = std::max(0.0, outside - kGridSlack);
@@ -412,8 +404,7 @@ NearestPoint PointGrid::find_nearest(const Vec3& q) const {
         for (int lj = 0; lj < layers[1]; ++lj) {
             const double g2_jk = layer_g2[2][lk] + layer_g2[1][lj];
             for (int li = (lk == 0 && lj == 0) ? 1 : 0; li < layers[0]; ++li)
-                if (!s.pruned(g2_jk + layer_g2[0][li]))
-                    scan_cell(cell_id(layer[0][li], layer[1][lj], layer[2][lk]), s);
+                if (!s.pruned(g2_jk + layer_g2[0][li])) scan_cell(cell_id(layer[0][li], layer[1][lj], layer[2][lk]), s);
         }
 
     // Coarser levels until nothing outside the scanned block can be closer.

@@ -138,9 +138,9 @@ private:
     };
     // The large arrays (hundreds of megabytes for tens of millions of points) on huge pages:
     // fewer page faults while they are filled, fewer TLB misses in the queries.
-    HugePageVector<Entry> entries_;              // grouped by cell
-    HugePageVector<OccupancyWord> occupancy_;    // one word per brick of 4x4x4 cells
-    HugePageVector<std::uint32_t> cell_start_;   // per occupied cell, then the total count
+    HugePageVector<Entry> entries_;             // grouped by cell
+    HugePageVector<OccupancyWord> occupancy_;   // one word per brick of 4x4x4 cells
+    HugePageVector<std::uint32_t> cell_start_;  // per occupied cell, then the total count
     // pyramid_[l - 1] holds the occupancy bits of level l >= 1, whose cells are 2^l grid cells wide.
     std::vector<std::vector<std::uint64_t>> pyramid_;
     std::vector<std::array<std::uint32_t, 3>> level_dims_;  // cells per axis, level 0 first

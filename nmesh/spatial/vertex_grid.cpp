@@ -132,9 +132,7 @@ void VertexGrid::rebuild() {
     // Up to kMaxRefinements passes, while the occupancy is more than a factor kRefineRatio off.
     for (int pass = 0; pass < kMaxRefinements; ++pass) {
         const double per_cell = double(n) / double(occupied_cells_);
-        if (pass > 0 && per_cell < kRefineRatio * kVerticesPerCell &&
-            per_cell * kRefineRatio > kVerticesPerCell)
-            break;
+        if (pass > 0 && per_cell < kRefineRatio * kVerticesPerCell && per_cell * kRefineRatio > kVerticesPerCell) break;
         const double old_size = cell_size_;
         set_cell_size(cell_size_ * std::sqrt(kVerticesPerCell / per_cell));
         if (pass > 0 && cell_size_ == old_size) break;  // clamped: nothing to refine
@@ -362,7 +360,8 @@ void VertexGrid::scan_cell(const Cell& cell, Query& query) const {
         // The lanes past the cell's count get all bits set: a key above any vertex's.
         const __m128i unused = _mm_cmplt_epi32(_mm_set_epi32(3, 2, 1, 0), _mm_set1_epi32(int(fill)));
         alignas(16) std::uint32_t bits[kBlockEntries];
-        _mm_store_si128(reinterpret_cast<__m128i*>(bits), _mm_or_si128(_mm_castps_si128(d2), _mm_xor_si128(unused, _mm_set1_epi32(-1))));
+        _mm_store_si128(reinterpret_cast<__m128i*>(bits),
+                        _mm_or_si128(_mm_castps_si128(d2), _mm_xor_si128(unused, _mm_set1_epi32(-1))));
         for (std::uint32_t k = 0; k < kBlockEntries; ++k) {
             const std::uint64_t key = std::uint64_t(bits[k]) << 32 | block.id[k];
             best = key < best ? key : best;
@@ -372,7 +371,8 @@ void VertexGrid::scan_cell(const Cell& cell, Query& query) const {
 #else
     for (std::uint32_t b = cell.head;; b = block_next_[b], fill = kBlockEntries) {
         for (std::uint32_t k = 0; k < fill; ++k) {
-            const std::uint64_t key = rank(squared_distance(query.q, entry_position(b * kBlockEntries + k)), blocks_[b].id[k]);
+            const std::uint64_t key =
+                rank(squared_distance(query.q, entry_position(b * kBlockEntries + k)), blocks_[b].id[k]);
             best = key < best ? key : best;
         }
         if (--blocks == 0) break;
@@ -544,8 +544,7 @@ std::uint32_t VertexGrid::nearest(const Vec3& q) const {
     // Beyond this many cells considered, one pass over the table is cheaper than more shells.
     const std::int64_t budget = std::int64_t(table_.size());
     bool near_path = r == 0;
-    for (int a = 0; a < 3; ++a)
-        near_path = near_path && query.cell[a] > 0 && query.cell[a] < std::int64_t(kMaxIndex);
+    for (int a = 0; a < 3; ++a) near_path = near_path && query.cell[a] > 0 && query.cell[a] < std::int64_t(kMaxIndex);
     if (near_path) {
         visit_near(query);
         // Most queries end here: the best vertex is nearer than any cell beyond ring 1 can be.

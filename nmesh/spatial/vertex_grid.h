@@ -158,7 +158,8 @@ private:
         std::uint32_t key_lo = std::uint32_t(kEmptyKey), key_hi = std::uint32_t(kEmptyKey >> 32);
         std::uint32_t entry = kNone;
         Slot() = default;
-        Slot(std::uint64_t key, std::uint32_t e) : key_lo(std::uint32_t(key)), key_hi(std::uint32_t(key >> 32)), entry(e) {}
+        Slot(std::uint64_t key, std::uint32_t e)
+            : key_lo(std::uint32_t(key)), key_hi(std::uint32_t(key >> 32)), entry(e) {}
         std::uint64_t key() const { return std::uint64_t(key_hi) << 32 | key_lo; }
     };
     static_assert(sizeof(Slot) == 12, "a slot is three 32-bit words");
@@ -184,7 +185,8 @@ private:
         const __m128d inv = _mm_set1_pd(inv_cell_size_), bias = _mm_set1_pd(kIndexBias);
         const __m128 xy = _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&p.x)));
         __m128d txy = _mm_add_pd(_mm_mul_pd(_mm_sub_pd(_mm_cvtps_pd(xy), _mm_loadu_pd(origin_)), inv), bias);
-        __m128d tz = _mm_add_sd(_mm_mul_sd(_mm_sub_sd(_mm_cvtss_sd(lo, _mm_load_ss(&p.z)), _mm_load_sd(&origin_[2])), inv), bias);
+        __m128d tz = _mm_add_sd(
+            _mm_mul_sd(_mm_sub_sd(_mm_cvtss_sd(lo, _mm_load_ss(&p.z)), _mm_load_sd(&origin_[2])), inv), bias);
         txy = _mm_min_pd(_mm_max_pd(txy, lo), hi);
         tz = _mm_min_sd(_mm_max_sd(tz, lo), hi);
         const __m128i ixy = _mm_cvttpd_epi32(txy);

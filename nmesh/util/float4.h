@@ -63,7 +63,8 @@ inline F4 operator*(F4 a, float s) { return {{a.v[0] * s, a.v[1] * s, a.v[2] * s
 inline F4 operator*(F4 a, F4 b) { return {{a.v[0] * b.v[0], a.v[1] * b.v[1], a.v[2] * b.v[2], 0.0f}}; }
 inline F4 yzx(F4 a) { return {{a.v[1], a.v[2], a.v[0], 0.0f}}; }
 inline F4 cross(F4 a, F4 b) {
-    return {{a.v[1] * b.v[2] - a.v[2] * b.v[1], a.v[2] * b.v[0] - a.v[0] * b.v[2], a.v[0] * b.v[1] - a.v[1] * b.v[0], 0.0f}};
+    return {{a.v[1] * b.v[2] - a.v[2] * b.v[1], a.v[2] * b.v[0] - a.v[0] * b.v[2], a.v[0] * b.v[1] - a.v[1] * b.v[0],
+             0.0f}};
 }
 #endif
 // cross(a, b) with its lanes in the order (z, x, y), from a, b and their rotations ra = yzx(a),

@@ -70,8 +70,12 @@ template <class T>
 using HugePageVector = std::vector<T, HugePageAllocator<T>>;
 
 template <class T, class U>
-bool operator==(const HugePageAllocator<T>&, const HugePageAllocator<U>&) noexcept { return true; }
+bool operator==(const HugePageAllocator<T>&, const HugePageAllocator<U>&) noexcept {
+    return true;
+}
 template <class T, class U>
-bool operator!=(const HugePageAllocator<T>&, const HugePageAllocator<U>&) noexcept { return false; }
+bool operator!=(const HugePageAllocator<T>&, const HugePageAllocator<U>&) noexcept {
+    return false;
+}
 
 }  // namespace nmesh

@@ -34,9 +34,7 @@ public:
     }
 
     // Uniform in [0, n) for n < 2^32 (Lemire's multiply-shift; the bias is below 2^-32 * n).
-    std::uint32_t below(std::uint32_t n) {
-        return std::uint32_t(((next() >> 32) * std::uint64_t(n)) >> 32);
-    }
+    std::uint32_t below(std::uint32_t n) { return std::uint32_t(((next() >> 32) * std::uint64_t(n)) >> 32); }
 
     // Uniform in [0, 1).
     double uniform() { return double(next() >> 11) * 0x1.0p-53; }

@@ -96,8 +96,8 @@ py::array_t<Scalar> adopt_rows(std::vector<Element>&& rows) {
     auto* data = reinterpret_cast<Scalar*>(owner->data());
     py::capsule base(owner.get(), [](void* p) { delete static_cast<std::vector<Element>*>(p); });
     owner.release();  // the capsule owns it now
-    return py::array_t<Scalar>({n, py::ssize_t(3)}, {py::ssize_t(sizeof(Element)), py::ssize_t(sizeof(Scalar))},
-                               data, base);
+    return py::array_t<Scalar>({n, py::ssize_t(3)}, {py::ssize_t(sizeof(Element)), py::ssize_t(sizeof(Scalar))}, data,
+                               base);
 }
 
 // (vertices (V, 3) float32, faces (F, 3) int32), taking the mesh's storage.

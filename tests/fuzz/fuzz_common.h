@@ -27,8 +27,8 @@ namespace nmesh::fuzz {
     std::abort();
 }
 
-#define NMESH_FUZZ_REQUIRE(cond) \
-    do {                         \
+#define NMESH_FUZZ_REQUIRE(cond)                                     \
+    do {                                                             \
         if (!(cond)) ::nmesh::fuzz::finding("check failed:", #cond); \
     } while (0)
 
@@ -134,7 +134,8 @@ inline Reading read_everything(const std::string& path) {
         // read_mesh keeps every vertex and refuses non-finite ones: the same points as read_points.
         NMESH_FUZZ_REQUIRE(points_ok);
         NMESH_FUZZ_REQUIRE(mesh.positions.size() == cloud.size());
-        for (std::size_t i = 0; i < cloud.size(); ++i) NMESH_FUZZ_REQUIRE(same_bits(mesh.positions[i], cloud.points[i]));
+        for (std::size_t i = 0; i < cloud.size(); ++i)
+            NMESH_FUZZ_REQUIRE(same_bits(mesh.positions[i], cloud.points[i]));
     }
     return r;
 }

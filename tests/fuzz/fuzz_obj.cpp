@@ -9,7 +9,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace nmesh;
     if (size == 0) return 0;
-    const fuzz::Reading r = fuzz::read_everything(fuzz::write_input(data + 1, size - 1, (data[0] & 1) ? ".off" : ".obj"));
+    const fuzz::Reading r =
+        fuzz::read_everything(fuzz::write_input(data + 1, size - 1, (data[0] & 1) ? ".off" : ".obj"));
     if (r.mesh_ok && !r.mesh.triangles.empty()) {
         fuzz::round_trip(r.mesh, ".obj");
         fuzz::round_trip(r.mesh, ".off");

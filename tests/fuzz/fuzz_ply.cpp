@@ -11,8 +11,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace nmesh;
     const fuzz::Reading r = fuzz::read_everything(fuzz::write_input(data, size, ".ply"));
-    const bool ply_magic = (size >= 4 && std::memcmp(data, "ply\n", 4) == 0) ||
-                           (size >= 5 && std::memcmp(data, "ply\r\n", 5) == 0);
+    const bool ply_magic =
+        (size >= 4 && std::memcmp(data, "ply\n", 4) == 0) || (size >= 5 && std::memcmp(data, "ply\r\n", 5) == 0);
     if (ply_magic) {
         bool sniffed_ok = false;
         PointCloud sniffed;
