@@ -20,6 +20,7 @@
 
 #include "nmesh/error.h"
 #include "nmesh/metrics.h"
+#include "nmesh/metrics/orientation.h"
 #include "nmesh/reconstruct.h"
 #include "cloud_fixtures.h"
 
@@ -745,6 +746,30 @@ TEST_CASE("orientation: the signed volume and the faces that point inward") {
     CHECK(h.inward_faces <= reversed);
     CHECK(h.inward_faces >= reversed * 9 / 10);
     CHECK(std::abs(h.signed_volume) < 0.5 * out.signed_volume);
+}
+
+TEST_CASE("orient_outward reverses an inside-out closed mesh and leaves an outward one alone") {
+    IndexedMesh m = icosphere(2);
+    const IndexedMesh outward = m;
+    CHECK_FALSE(nmesh::metrics_detail::orient_outward(m));
+    CHECK(m.triangles == outward.triangles);
+    for (auto& t : m.triangles) std::swap(t[1], t[2]);
+    CHECK(nmesh::metrics_detail::orient_outward(m));
+    CHECK(m.triangles == outward.triangles);
+    CHECK(quick_evaluate(m).signed_volume > 0.0);
+}
+
+TEST_CASE("reconstruct() faces every output outward and records its check") {
+    nmesh::Parameters p;
+    p.target_vertices = 400;
+    for (const std::uint64_t seed : {1u, 2u, 3u}) {
+        p.seed = seed;
+        const nmesh::Result r = nmesh::reconstruct(nmesh::test::sphere_cloud(4000, 1.0f, {0.3f, 0.1f, -0.2f}, seed), p);
+        const QualityReport q = quick_evaluate(r.mesh);
+        CHECK(q.signed_volume > 0.0);
+        CHECK(r.stats.crossing_pairs == q.self_intersections);
+        CHECK(r.stats.inward_faces == q.inward_faces);
+    }
 }
 
 TEST_CASE("evaluate rejects inputs it cannot measure") {

@@ -416,6 +416,31 @@ TEST_CASE("cancellation stops the run and returns a valid smaller mesh") {
     require_closed_manifold(r.mesh);
 }
 
+TEST_CASE("the finishing stage reports its progress after the learning's, ending at 1") {
+    Parameters p;
+    p.target_vertices = 2000;
+    Callbacks cb;
+    std::vector<Progress> reports;
+    cb.progress = [&](const Progress& pr) {
+        reports.push_back(pr);
+        return true;
+    };
+    const Result r = reconstruct(bundled_bunny(), p, cb);
+    REQUIRE(r.stats.finished);
+    const auto first = std::find_if(reports.begin(), reports.end(), [](const Progress& x) { return x.finishing; });
+    REQUIRE(first != reports.end());
+    // Every report after the first of the stage is the stage's, in order, the last at 1.
+    double fraction = 0.0;
+    for (auto it = first; it != reports.end(); ++it) {
+        CHECK(it->finishing);
+        CHECK(it->finish_fraction >= fraction);
+        fraction = it->finish_fraction;
+    }
+    CHECK(reports.back().finish_fraction == 1.0);
+    CHECK_FALSE(reports.front().finishing);
+    CHECK(reports.back().seconds >= r.stats.seconds);
+}
+
 TEST_CASE("progress reports the setup apart, and the time left leaves it out") {
     const PointCloud cloud = sphere_cloud(20000);
     Parameters p;
