@@ -34,7 +34,7 @@ struct Progress {
     bool settling = false;
     // The finishing stage, after the learning: its share done (0 to 1). The stage's reports come
     // with `finishing` set, at most every 0.1 s; returning false from them changes nothing (the
-    // stage keeps the vertex count and is bounded by the learning's time).
+    // stage keeps the vertex count and its rounds are bounded).
     bool finishing = false;
     double finish_fraction = 0.0;
 };

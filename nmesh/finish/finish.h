@@ -74,7 +74,8 @@ struct FinishOptions {
     float fit_weight = 0.3f;
     // Wall-clock limit of the stage in seconds, 0 for none. The repair stops its rounds once the
     // limit is reached and keeps what it has achieved when that is an improvement
-    // (repair_folds_and_intersections); reconstruct() gives the stage the learning's own time.
+    // (repair_folds_and_intersections). reconstruct() sets none: with a limit in seconds the
+    // mesh depends on the machine's speed.
     double seconds_limit = 0.0;
 };
 

@@ -210,13 +210,13 @@ void settle(NeuralMesh& engine, const Parameters& params, Reporter& reporter) {
 // Parameters::index_points_per_vertex, normalised), or a new index when the engine has none
 // (it builds one only for the edge swap). Returns false, leaving `mesh` alone, should the stage
 // ever fail to keep the vertex count.
-// Choice: the stage may take about as long as the learning did, or kFinishMinSeconds for a small
-// mesh (`seconds_limit`: its rounds stop there; setting up and the round under way finish), so
-// that a mesh whose defects the repair cannot remove costs no more than about twice the learning.
-constexpr double kFinishMinSeconds = 0.25;
+// Choice: the stage runs without a time limit (FinishOptions::seconds_limit 0), so that the same
+// input, parameters and seed give the same mesh on any machine: a limit in seconds would make the
+// number of repair rounds, and so the mesh, depend on the machine's speed. Its rounds are bounded
+// (FinishOptions::repair_max_rounds).
 bool finish_stage(const Mesh& learnt, std::unique_ptr<PointGrid> cloud_index, PointSpan cloud,
-                  const Normalization& norm, const Parameters& params, double seconds_limit, Reporter& reporter,
-                  Statistics& stats, Mesh& mesh) {
+                  const Normalization& norm, const Parameters& params, Reporter& reporter, Statistics& stats,
+                  Mesh& mesh) {
     if (!cloud_index) {
         cloud_index = index_cloud(cloud, norm.transform, norm.bounds, params);
         record_index(*cloud_index, stats);
@@ -225,7 +225,6 @@ bool finish_stage(const Mesh& learnt, std::unique_ptr<PointGrid> cloud_index, Po
     FinishOptions options;
     options.rounds = int(params.finish_rounds);
     options.fit_rounds = int(params.fit_rounds);
-    options.seconds_limit = seconds_limit;
     finish_mesh(mesh, cloud_index->indexed_points(), options, cloud_index.get(),
                 [&](double fraction) { reporter.report_finishing(fraction); });
     return mesh.n_vertices() == learnt.n_vertices();
@@ -271,8 +270,7 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
 
     Mesh finished;
     result.stats.finished =
-        finish && finish_stage(learnt, std::move(cloud_index), cloud, norm, params,
-                               std::max(kFinishMinSeconds, learning_seconds), reporter, result.stats, finished);
+        finish && finish_stage(learnt, std::move(cloud_index), cloud, norm, params, reporter, result.stats, finished);
     if (result.stats.finished) learnt = Mesh();  // freed before the output mesh is built
     result.mesh = norm.to_input(result.stats.finished ? finished.to_indexed() : learnt.to_indexed());
     result.stats.seconds = learning_seconds;
