@@ -48,7 +48,7 @@ Mesh Mesh::tetrahedron(const Vec3& a, const Vec3& b_in, const Vec3& c_in, const 
     return m;
 }
 
-Mesh Mesh::from_indexed(const IndexedMesh& in) {
+Mesh Mesh::from_indexed(const IndexedMesh& in, bool allow_boundary) {
     // The limit before anything is built: a closed genus-0 mesh of T triangles has 3T half-edges
     // and T / 2 + 2 vertices, so a valid input within the limit has at most kMaxVertices.
     check_halfedge_count(3 * std::uint64_t(in.triangles.size()), "from_indexed");
@@ -82,22 +82,32 @@ Mesh Mesh::from_indexed(const IndexedMesh& in) {
         const auto it = std::lower_bound(directed.begin(), directed.end(), std::make_pair(key(a, b), 0u));
         return (it != directed.end() && it->first == key(a, b)) ? it->second : kInvalidIndex;
     };
-    // Corner slot (t * 3 + i) -> half-edge; each undirected edge gets one pair.
+    // Corner slot (t * 3 + i) -> half-edge; each undirected edge gets one pair. An edge with one
+    // triangle gets a boundary half-edge, remembered per origin vertex to link the loops below.
     std::vector<std::uint32_t> he_of(directed.size(), kInvalidIndex);
+    std::vector<std::uint32_t> boundary_out;  // per vertex: its outgoing boundary half-edge
     for (std::size_t t = 0; t < in.triangles.size(); ++t) {
         for (int i = 0; i < 3; ++i) {
             const std::uint32_t c = std::uint32_t(t * 3 + i);
             if (he_of[c] != kInvalidIndex) continue;
             const std::uint32_t a = in.triangles[t][i], b = in.triangles[t][(i + 1) % 3];
             const std::uint32_t opposite = find(b, a);
-            if (opposite == kInvalidIndex)
+            if (opposite == kInvalidIndex && !allow_boundary)
                 throw InputError("mesh: the edge " + std::to_string(a) + " - " + std::to_string(b) +
                                  " has only one triangle (the mesh is not closed)");
             const Edge e = m.new_edge();
             he_of[c] = halfedge(e, 0).idx;
-            he_of[opposite] = halfedge(e, 1).idx;
             m.he_[halfedge(e, 0).idx].to = b;
             m.he_[halfedge(e, 1).idx].to = a;
+            if (opposite != kInvalidIndex) {
+                he_of[opposite] = halfedge(e, 1).idx;
+                continue;
+            }
+            if (boundary_out.empty()) boundary_out.assign(nv, kInvalidIndex);
+            if (boundary_out[b] != kInvalidIndex)
+                throw InputError("mesh: vertex " + std::to_string(b) + " has two boundary gaps (a bow-tie vertex)");
+            boundary_out[b] = halfedge(e, 1).idx;  // b -> a, without a face
+            ++m.n_boundary_;
         }
     }
     for (std::size_t t = 0; t < in.triangles.size(); ++t) {
@@ -105,10 +115,19 @@ Mesh Mesh::from_indexed(const IndexedMesh& in) {
         m.link_face(f, Halfedge(he_of[t * 3]), Halfedge(he_of[t * 3 + 1]), Halfedge(he_of[t * 3 + 2]));
         for (int i = 0; i < 3; ++i) m.vhe_[in.triangles[t][i]] = he_of[t * 3 + i];
     }
+    // Boundary loops: each boundary half-edge continues with the one leaving its target, which is
+    // also the target's stored half-edge.
+    for (std::uint32_t v = 0; v < std::uint32_t(boundary_out.size()); ++v) {
+        const std::uint32_t h = boundary_out[v];
+        if (h == kInvalidIndex) continue;
+        m.vhe_[v] = h;
+        m.he_[h].next = boundary_out[m.he_[h].to];  // the loop's next; it exists as every
+                                                    // boundary edge ends where another begins
+    }
     for (std::uint32_t v = 0; v < nv; ++v)
         if (m.vhe_[v] == kInvalidIndex) throw InputError("mesh: vertex " + std::to_string(v) + " is in no triangle");
     const ManifoldCheck check = check_manifold(m);
-    if (!check.ok) throw InputError("mesh: not a closed genus-0 2-manifold: " + check.error);
+    if (!check.ok) throw InputError("mesh: not a connected 2-manifold: " + check.error);
     return m;
 }
 
@@ -127,6 +146,8 @@ void Mesh::reserve(std::uint32_t n) {
 }
 
 void Mesh::drop_faces() {
+    if (n_boundary_ != 0)
+        throw ParameterError("mesh: drop_faces: the mesh has boundaries, which the face index tells apart");
     std::vector<std::uint32_t>().swap(he_face_);  // the memory itself goes, not just the size
     std::vector<std::uint32_t>().swap(fhe_);
     ffree_ = kInvalidIndex;
@@ -244,19 +265,42 @@ void Mesh::replace_in_face(Halfedge old, Halfedge by) {
 
 // ---- queries ------------------------------------------------------------------------------------
 
+// Both clockwise: one load per step, and valid next to a boundary.
 Halfedge Mesh::find_halfedge(Vertex a, Vertex b) const {
     const Halfedge start = halfedge(a);
     Halfedge h = start;
     do {
         if (to(h) == b) return h;
-        h = ccw_rotated(h);
+        h = cw_rotated(h);
     } while (h != start);
     return Halfedge();
 }
 
 std::uint32_t Mesh::valence(Vertex v) const {
     std::uint32_t n = 0;
-    for_each_outgoing(v, [&](Halfedge) { ++n; });
+    for_each_outgoing_cw(v, [&](Halfedge) { ++n; });
+    return n;
+}
+
+Halfedge Mesh::prev_on_boundary(Halfedge h) const {
+    assert(is_boundary(h));
+    // The incoming boundary half-edge of from(h) is the twin of one of its outgoing half-edges.
+    Halfedge g = h;
+    do {
+        if (is_boundary(twin(g))) return twin(g);
+        g = cw_rotated(g);
+    } while (g != h);
+    assert(false);
+    return Halfedge();
+}
+
+std::uint32_t Mesh::loop_length(Halfedge h) const {
+    std::uint32_t n = 0;
+    Halfedge g = h;
+    do {
+        ++n;
+        g = next(g);
+    } while (g != h);
     return n;
 }
 
@@ -297,7 +341,8 @@ bool Mesh::can_split(Halfedge to_c, Halfedge to_d) const {
     if (!to_c.valid() || !to_d.valid() || to_c == to_d) return false;
     if (to_c.idx >= halfedge_capacity() || to_d.idx >= halfedge_capacity()) return false;
     if (is_removed(to_c) || is_removed(to_d)) return false;
-    return from(to_c) == from(to_d);
+    if (from(to_c) != from(to_d)) return false;
+    return !is_boundary(from(to_c));  // a boundary vertex is not split
 }
 
 Vertex Mesh::split(Halfedge to_c, Halfedge to_d, const Vec3& p) {
@@ -355,6 +400,9 @@ bool Mesh::can_collapse(Halfedge h) const {
     if (!h.valid() || h.idx >= halfedge_capacity() || is_removed(h)) return false;
     if (n_vertices_ <= 4) return false;  // a tetrahedron is the smallest closed manifold
     const Vertex a = from(h), b = to(h);
+    // Next to a boundary only edges between two interior vertices collapse: their faces, ring
+    // walks and link condition are those of a closed mesh.
+    if (n_boundary_ != 0 && (is_boundary(a) || is_boundary(b))) return false;
     const Vertex c = to(next(h)), d = to(next(twin(h)));
     const std::uint32_t va = valence(a), vb = valence(b);
     if (va + vb < 4 + 3) return false;                     // b would end below valence 3
@@ -409,6 +457,7 @@ void Mesh::collapse(Halfedge h) {
 
 bool Mesh::can_flip(Halfedge h) const {
     if (!h.valid() || h.idx >= halfedge_capacity() || is_removed(h)) return false;
+    if (n_boundary_ != 0 && is_boundary(edge(h))) return false;  // a boundary edge has one face
     const Vertex a = from(h), b = to(h);
     const Vertex c = to(next(h)), d = to(next(twin(h)));
     if (c == d) return false;
@@ -461,6 +510,158 @@ void Mesh::unflip(const FlipRecord& r) {
 #endif
 }
 
+// ---- face removal -------------------------------------------------------------------------------
+
+bool Mesh::can_remove_face(Face f) const {
+    if (!faces_ || !f.valid() || f.idx >= face_capacity() || is_removed(f)) return false;
+    const Halfedge h0 = halfedge(f), h1 = next(h0), h2 = next(h1);
+    const Halfedge hs[3] = {h0, h1, h2};
+    int on_boundary = 0, which = 0;
+    for (int i = 0; i < 3; ++i)
+        if (is_boundary(twin(hs[i]))) ++on_boundary, which = i;
+    if (on_boundary == 0) return !is_boundary(from(h0)) && !is_boundary(from(h1)) && !is_boundary(from(h2));
+    // The vertex opposite the boundary edge would get a second gap if it is on a boundary.
+    return on_boundary == 1 && !is_boundary(to(next(hs[which])));
+}
+
+void Mesh::remove_face(Face f) {
+    assert(can_remove_face(f));
+    const Halfedge h0 = halfedge(f);
+    Halfedge hi = h0;  // f's half-edge on the boundary, if any
+    for (int i = 0; i < 3 && !is_boundary(twin(hi)); ++i) hi = next(hi);
+    if (!is_boundary(twin(hi))) {
+        // A new loop of three: f's own next cycle, now without a face.
+        for (Halfedge h = h0;;) {
+            he_face_[h.idx] = kInvalidIndex;
+            vhe_[from(h).idx] = h.idx;  // a boundary vertex stores its outgoing boundary half-edge
+            ++n_boundary_;
+            h = next(h);
+            if (h == h0) break;
+        }
+    } else {
+        // f = [hi: u -> w, hn: w -> o, hp: o -> u] beside the loop ... pb -> bt -> nb ..., bt = w -> u:
+        // the loop becomes ... pb -> hn -> hp -> nb ..., and the edge u - w goes.
+        const Halfedge bt = twin(hi), hn = next(hi), hp = next(hn);
+        const Halfedge pb = prev_on_boundary(bt), nb = next(bt);
+        const Vertex w = to(hi), o = to(hn);
+        he_[pb.idx].next = hn.idx;
+        he_[hp.idx].next = nb.idx;
+        he_face_[hn.idx] = he_face_[hp.idx] = kInvalidIndex;
+        he_face_[hi.idx] = he_face_[bt.idx] = kInvalidIndex;  // dead slots read as faceless
+        vhe_[w.idx] = hn.idx;                                 // w's outgoing boundary half-edge was bt
+        vhe_[o.idx] = hp.idx;
+        n_boundary_ += 1;  // hn and hp in, bt out
+        delete_edge(edge(hi));
+    }
+    delete_face(f);
+#ifdef NMESH_CHECK_INVARIANTS
+    assert_manifold(*this, "remove_face");
+#endif
+}
+
+// ---- joining two loops ----------------------------------------------------------------------------
+
+Mesh::JoinPlan Mesh::plan_join(Halfedge a, Halfedge b) const {
+    JoinPlan plan;
+    for (Halfedge h = a;;) {  // p_i = from(a_i), a_i = p_i -> p_i+1
+        plan.p.push_back(from(h).idx);
+        plan.p_he.push_back(h.idx);
+        h = next(h);
+        if (h == a) break;
+    }
+    for (Halfedge h = b;;) {  // q_k = to(b_k), b_k = q_k+1 -> q_k, walking b's loop backwards
+        plan.q.push_back(to(h).idx);
+        plan.q_he.push_back(h.idx);
+        h = prev_on_boundary(h);
+        if (h == b) break;
+    }
+    const std::size_t m = plan.p.size(), n = plan.q.size();
+    auto dist2 = [&](std::uint32_t u, std::uint32_t v) { return squared_norm(vpos_[u] - vpos_[v]); };
+    // The zip is a staircase from (0, 0) to (m, n) on the grid of edges p_i - q_k, whose far
+    // sides wrap round: (i, n) is the edge (i, 0) and (m, k) the edge (0, k). So a step may not
+    // reach (i, n) when the zip began along p past i, nor (m, k) when it began along q past k;
+    // only (m, n), the first edge again, closes it. One of the two steps is always allowed.
+    std::size_t i = 0, k = 0, p_run = 0, q_run = 0;  // the first edges along p / q: (p_run, 0) ...
+    auto repeats = [&](std::size_t ni, std::size_t nk) {
+        return (nk == n && ni < m && ni <= p_run) || (ni == m && nk < n && nk <= q_run);
+    };
+    while (i < m || k < n) {
+        // Along p the new edge is p_i+1 - q_k; along q it is p_i - q_k+1.
+        bool along_p;
+        if (i == m || (k < n && repeats(i + 1, k)))
+            along_p = false;
+        else if (k == n || repeats(i, k + 1))
+            along_p = true;
+        else
+            along_p = dist2(plan.p[(i + 1) % m], plan.q[k]) <= dist2(plan.p[i], plan.q[(k + 1) % n]);
+        plan.along_p.push_back(along_p);
+        if (along_p) {
+            if (k == 0) p_run = i + 1;
+            ++i;
+        } else {
+            if (i == 0) q_run = k + 1;
+            ++k;
+        }
+    }
+    return plan;
+}
+
+bool Mesh::can_join_loops(Halfedge a, Halfedge b) const {
+    if (!faces_ || !a.valid() || !b.valid() || a.idx >= halfedge_capacity() || b.idx >= halfedge_capacity())
+        return false;
+    if (is_removed(a) || is_removed(b) || !is_boundary(a) || !is_boundary(b)) return false;
+    for (Halfedge h = next(a); h != a; h = next(h))
+        if (h == b) return false;  // one loop
+    if (std::uint64_t(n_edges_) + loop_length(a) + loop_length(b) > kMaxHalfedges / 2) return false;
+    const JoinPlan plan = plan_join(a, b);
+    // Every new edge p_i - q_k must be new: the two loops share no vertex (a vertex has one gap),
+    // so only an existing edge between them can repeat one.
+    const std::size_t m = plan.p.size(), n = plan.q.size();
+    std::size_t i = 0, k = 0;
+    for (const char along_p : plan.along_p) {
+        if (find_halfedge(Vertex(plan.p[i % m]), Vertex(plan.q[k % n])).valid()) return false;
+        along_p ? ++i : ++k;
+    }
+    return true;
+}
+
+void Mesh::join_loops(Halfedge a, Halfedge b) {
+    assert(can_join_loops(a, b));
+    const JoinPlan plan = plan_join(a, b);
+    const std::size_t m = plan.p.size(), n = plan.q.size();
+    // Each step makes one face from a boundary half-edge and two edges p - q: the step's first
+    // edge, run q -> p, and its last, run p -> q (its half-edges 0: p -> q and 1: q -> p); the
+    // last step's last edge is the first step's first.
+    auto new_rung = [&](std::uint32_t p, std::uint32_t q) {
+        const Edge e = new_edge();
+        he_[halfedge(e, 0).idx].to = q;
+        he_[halfedge(e, 1).idx].to = p;
+        return e;
+    };
+    const Edge first = new_rung(plan.p[0], plan.q[0]);
+    Edge current = first;
+    std::size_t i = 0, k = 0;
+    for (std::size_t s = 0; s < plan.along_p.size(); ++s) {
+        const bool along_p = plan.along_p[s];
+        const std::size_t ni = along_p ? i + 1 : i, nk = along_p ? k : k + 1;
+        const bool last = s + 1 == plan.along_p.size();
+        const Edge end = last ? first : new_rung(plan.p[ni % m], plan.q[nk % n]);
+        const Face f = new_face();
+        if (along_p)  // (p_i, p_i+1, q_k)
+            link_face(f, Halfedge(plan.p_he[i]), halfedge(end, 0), halfedge(current, 1));
+        else  // (q_k+1, q_k, p_i)
+            link_face(f, Halfedge(plan.q_he[k]), halfedge(current, 1), halfedge(end, 0));
+        current = end;
+        i = ni;
+        k = nk;
+    }
+    n_boundary_ -= std::uint32_t(m + n);
+    // The loops' vertices keep their stored half-edges: still outgoing, now inside faces.
+#ifdef NMESH_CHECK_INVARIANTS
+    assert_manifold(*this, "join_loops");
+#endif
+}
+
 // ---- export -------------------------------------------------------------------------------------
 
 IndexedMesh Mesh::to_indexed(std::vector<std::uint32_t>* vertex_map) const {
@@ -490,7 +691,8 @@ bool Mesh::same_arrays(const Mesh& o) const {
     // The dead marks and free lists live in vhe_, he_ and fhe_ and the heads.
     return vhe_ == o.vhe_ && he_ == o.he_ && he_face_ == o.he_face_ && fhe_ == o.fhe_ && vfree_ == o.vfree_ &&
            ffree_ == o.ffree_ && efree_ == o.efree_ && n_vertices_ == o.n_vertices_ && n_faces_ == o.n_faces_ &&
-           n_edges_ == o.n_edges_ && faces_ == o.faces_ && vpos_.size() == o.vpos_.size() &&
+           n_edges_ == o.n_edges_ && n_boundary_ == o.n_boundary_ && faces_ == o.faces_ &&
+           vpos_.size() == o.vpos_.size() &&
            std::equal(vpos_.begin(), vpos_.end(), o.vpos_.begin(), [](const Vec3& p, const Vec3& q) { return p == q; });
 }
 

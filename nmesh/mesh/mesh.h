@@ -1,4 +1,4 @@
-// nmesh/mesh.h — an index-based half-edge mesh for closed triangle 2-manifolds.
+// nmesh/mesh.h — an index-based half-edge mesh for triangle 2-manifolds, closed or with boundaries.
 //
 // Storage (arrays only, no node-based containers):
 //   - half-edges come in pairs: edge e owns half-edges 2e and 2e+1, so twin(h) = h ^ 1;
@@ -34,8 +34,20 @@
 // never reads as the list's end.
 //
 // The mesh core knows topology only. Each topology operation has a named predicate
-// (can_split, can_collapse, can_flip) and asserts it; the learning algorithm adds its own rules on
-// top. Every operation takes a closed 2-manifold to a closed 2-manifold of the same genus.
+// (can_split, can_collapse, can_flip, can_remove_face, can_join_loops) and asserts it; the
+// learning algorithm adds its own rules on top. Split, collapse and flip keep the genus and the
+// boundary loops; remove_face opens or widens a boundary; join_loops closes two loops with a tube.
+//
+// Boundaries: a boundary half-edge is an alive half-edge without a face, the twin of a face's
+// half-edge; the boundary half-edges of a hole are linked by next() into one cycle (its loop, of
+// any length >= 3) that runs opposite to the faces around it. Boundaries need the face index
+// (a boundary half-edge is one whose face is kInvalidIndex), so a mesh with boundaries keeps it:
+// drop_faces() refuses. A boundary vertex has exactly one gap (no bow-tie): one outgoing and one
+// incoming boundary half-edge, and its stored half-edge is the outgoing one, so is_boundary(v)
+// is one load. On a closed mesh every boundary test is a compare of a zero counter.
+// Rotation next to a boundary: cw_rotated() (next(twin(h))) passes through the gap and works
+// everywhere; ccw_rotated() needs prev(h), which is next(next(h)) only inside a triangle, so the
+// counter-clockwise circulators need an interior vertex (asserted in debug builds).
 //
 // Orientation: faces are counter-clockwise seen from outside; next() walks a face CCW; the
 // outgoing half-edges of a vertex are visited CCW by ccw_rotated(h) = twin(prev(h)).
@@ -87,9 +99,9 @@ public:
     // (the points must not be coplanar).
     static Mesh tetrahedron(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
     // Builds the half-edge form of a dense mesh. Throws InputError unless the triangles form a
-    // closed, consistently oriented, connected genus-0 2-manifold using every vertex.
-    // O(F log F).
-    static Mesh from_indexed(const IndexedMesh& in);
+    // consistently oriented, connected 2-manifold of any genus using every vertex, closed unless
+    // `allow_boundary` (then without bow-tie vertices). O(F log F).
+    static Mesh from_indexed(const IndexedMesh& in, bool allow_boundary = false);
 
     // ---- sizes ------------------------------------------------------------------------------
     std::uint32_t n_vertices() const { return n_vertices_; }  // alive
@@ -117,7 +129,8 @@ public:
 
     // The face index (see the top of this file). A new mesh has it.
     bool has_faces() const { return faces_; }
-    // Frees the face index: the Face handles are gone until build_faces(). O(1).
+    // Frees the face index: the Face handles are gone until build_faces(). O(1). Throws
+    // ParameterError on a mesh with boundaries (they are told apart by the index).
     void drop_faces();
     // Makes the face index, when there is none: faces numbered 0 .. n_faces() - 1 in the order
     // of their smallest half-edge, which is also the one halfedge(Face) returns; no free face
@@ -137,11 +150,14 @@ public:
     Vertex to(Halfedge h) const { return Vertex(he_[h.idx].to); }
     Vertex from(Halfedge h) const { return to(twin(h)); }
     Halfedge next(Halfedge h) const { return Halfedge(he_[h.idx].next); }
-    Halfedge prev(Halfedge h) const { return next(next(h)); }  // faces are triangles
+    Halfedge prev(Halfedge h) const {  // faces are triangles; see prev_on_boundary()
+        assert(!is_boundary(h));
+        return next(next(h));
+    }
     static Halfedge twin(Halfedge h) { return Halfedge(h.idx ^ 1u); }
     static Edge edge(Halfedge h) { return Edge(h.idx >> 1); }
     static Halfedge halfedge(Edge e, int i) { return Halfedge((e.idx << 1) | std::uint32_t(i)); }
-    Face face(Halfedge h) const {  // needs faces
+    Face face(Halfedge h) const {  // needs faces; an invalid handle for a boundary half-edge
         assert(faces_);
         return Face(he_face_[h.idx]);
     }
@@ -162,7 +178,18 @@ public:
     Halfedge cw_rotated(Halfedge h) const { return next(twin(h)); }
     // The half-edge a -> b, or an invalid handle when a and b are not adjacent. O(valence(a)).
     Halfedge find_halfedge(Vertex a, Vertex b) const;
-    std::uint32_t valence(Vertex v) const;
+    std::uint32_t valence(Vertex v) const;  // neighbours, boundary ones included
+
+    // ---- boundaries -------------------------------------------------------------------------
+    std::uint32_t n_boundary_halfedges() const { return n_boundary_; }
+    bool has_boundary() const { return n_boundary_ != 0; }
+    bool is_boundary(Halfedge h) const { return n_boundary_ != 0 && he_face_[h.idx] == kInvalidIndex; }
+    bool is_boundary(Vertex v) const { return is_boundary(halfedge(v)); }
+    bool is_boundary(Edge e) const { return is_boundary(halfedge(e, 0)) || is_boundary(halfedge(e, 1)); }
+    // The boundary half-edge before h in its loop (the one ending at from(h)). O(valence).
+    Halfedge prev_on_boundary(Halfedge h) const;
+    // The number of half-edges in h's loop. O(length).
+    std::uint32_t loop_length(Halfedge h) const;
 
     // ---- circulators ------------------------------------------------------------------------
     // Visit the one-ring of v counter-clockwise: f(Halfedge outgoing) / f(Vertex) / f(Face).
@@ -232,6 +259,23 @@ public:
     FlipRecord flip(Halfedge h);
     void unflip(const FlipRecord& r);
 
+    // Face removal: f's half-edges join the boundary (a new loop of 3, or a loop widened across
+    // f's one boundary edge, whose edge goes). Allowed when at most one of f's edges is on a
+    // boundary and no vertex of f would get a second gap: with no boundary edge, no vertex of f
+    // may be on a boundary; with one, the vertex opposite it may not. So no bow-tie vertex, no
+    // vertex left without a face, and the mesh stays connected. Needs the face index.
+    bool can_remove_face(Face f) const;
+    void remove_face(Face f);
+
+    // Join two boundary loops with a tube of new faces (a handle when both lie on one component).
+    // `a` and `b` are boundary half-edges of different loops, of lengths m and n; the tube starts
+    // with the edge from(a) - to(b), runs along a's loop forwards and b's loop backwards, and at
+    // each step takes the shorter of the two possible new edges (a greedy zip). Adds m + n faces
+    // and m + n edges; both loops disappear. Allowed when a and b lie on different loops and no
+    // new edge joins two vertices that are already adjacent. O(m n) for the predicate.
+    bool can_join_loops(Halfedge a, Halfedge b) const;
+    void join_loops(Halfedge a, Halfedge b);
+
     // Each operation behind its predicate: a refused operation returns false (an invalid vertex
     // for try_split) and leaves the mesh untouched.
     Vertex try_split(Halfedge to_c, Halfedge to_d, const Vec3& p) {
@@ -246,6 +290,16 @@ public:
         if (!can_flip(h)) return false;
         const FlipRecord r = flip(h);
         if (record) *record = r;
+        return true;
+    }
+    bool try_remove_face(Face f) {
+        if (!can_remove_face(f)) return false;
+        remove_face(f);
+        return true;
+    }
+    bool try_join_loops(Halfedge a, Halfedge b) {
+        if (!can_join_loops(a, b)) return false;
+        join_loops(a, b);
         return true;
     }
 
@@ -297,6 +351,14 @@ private:
     void link_face(Face f, Halfedge h0, Halfedge h1, Halfedge h2);
     // Put `by` where `old` is in old's face (same face, same neighbours in the cycle).
     void replace_in_face(Halfedge old, Halfedge by);
+    // The zip join_loops() makes: the vertices of a's loop forwards from from(a), of b's loop
+    // backwards from to(b), the boundary half-edges along them, and per step whether it
+    // advances along a's loop.
+    struct JoinPlan {
+        std::vector<std::uint32_t> p, q, p_he, q_he;
+        std::vector<char> along_p;
+    };
+    JoinPlan plan_join(Halfedge a, Halfedge b) const;
 
     std::vector<Vec3> vpos_;
     std::vector<std::uint32_t> vhe_;  // outgoing half-edge, or next free vertex | kFreeBit
@@ -312,7 +374,8 @@ private:
     // Free-list heads, marked like the links (slot | kFreeBit, or kInvalidIndex when empty).
     std::uint32_t vfree_ = kInvalidIndex, ffree_ = kInvalidIndex, efree_ = kInvalidIndex;
     std::uint32_t n_vertices_ = 0, n_faces_ = 0, n_edges_ = 0;
-    bool faces_ = true;  // he_face_, fhe_ and ffree_ are kept
+    std::uint32_t n_boundary_ = 0;  // alive half-edges without a face
+    bool faces_ = true;             // he_face_, fhe_ and ffree_ are kept
 };
 
 }  // namespace nmesh

@@ -12,6 +12,8 @@ struct Checker {
     const Mesh& m;
     std::ostringstream err;
     bool failed = false;
+    std::uint32_t loops = 0;
+    std::int64_t euler = 0;
 
     template <class... T>
     bool fail(const T&... parts) {
@@ -63,27 +65,53 @@ struct Checker {
                    [&](std::uint32_t s) { return m.next_free_edge(s); });
     }
 
+    // Half-edges without a face: boundary half-edges (only with the face index).
+    bool faceless(std::uint32_t h) const { return m.has_faces() && m.face(Halfedge(h)).idx == kInvalidIndex; }
+
     bool halfedges() {
         // Without the face index (Mesh::drop_faces) the next cycles are checked alone.
         const bool named = m.has_faces();
+        std::uint32_t boundary = 0;
+        std::vector<std::uint8_t> has_prev(m.halfedge_capacity(), 0);
         for (std::uint32_t i = 0; i < m.halfedge_capacity(); ++i) {
             const Halfedge h(i);
             if (m.is_removed(h)) continue;
-            const std::uint32_t to = m.to(h).idx, nx = m.next(h).idx, f = named ? m.face(h).idx : 0;
+            const std::uint32_t to = m.to(h).idx, nx = m.next(h).idx;
             if (!vertex_ok(to)) return fail("half-edge ", i, " points to vertex ", to, ", which is not alive");
             if (!halfedge_ok(nx)) return fail("half-edge ", i, ": next ", nx, " is not alive");
-            if (named && !face_ok(f)) return fail("half-edge ", i, ": face ", f, " is not alive");
             if (nx == i) return fail("half-edge ", i, " is its own next");
+            if (has_prev[nx]++) return fail("half-edge ", nx, " follows two half-edges (next is not a permutation)");
+            const std::uint32_t origin = m.to(Mesh::twin(h)).idx;
+            if (origin == to) return fail("half-edge ", i, " is a loop at vertex ", to);
+            if (faceless(i)) {
+                ++boundary;
+                if (faceless(i ^ 1u)) return fail("edge ", i / 2, " has no face on either side");
+                if (!faceless(nx)) return fail("boundary half-edge ", i, ": its next ", nx, " has a face");
+                if (m.to(Mesh::twin(Halfedge(nx))).idx != to)
+                    return fail("boundary half-edge ", i, ": its next does not leave its target ", to);
+                continue;
+            }
+            const std::uint32_t f = named ? m.face(h).idx : 0;
+            if (named && !face_ok(f)) return fail("half-edge ", i, ": face ", f, " is not alive");
             const Halfedge n2 = m.next(Halfedge(nx));
             if (!halfedge_ok(n2.idx) || m.next(n2).idx != i)
                 return fail("half-edge ", i, ": the next cycle does not close after 3 steps");
             if (named && (m.face(Halfedge(nx)).idx != f || m.face(n2).idx != f))
                 return fail("half-edge ", i, ": its next cycle spans several faces");
-            const std::uint32_t origin = m.to(n2).idx;  // target of prev
-            if (m.to(Mesh::twin(h)).idx != origin)
-                return fail("half-edge ", i, ": inconsistent orientation (twin ends at ", m.to(Mesh::twin(h)).idx,
-                            ", previous half-edge ends at ", origin, ")");
-            if (origin == to) return fail("half-edge ", i, " is a loop at vertex ", to);
+            if (m.to(n2).idx != origin)  // the target of prev
+                return fail("half-edge ", i, ": inconsistent orientation (twin ends at ", origin,
+                            ", previous half-edge ends at ", m.to(n2).idx, ")");
+        }
+        if (boundary != m.n_boundary_halfedges())
+            return fail("boundary half-edge count ", m.n_boundary_halfedges(), " but ", boundary, " without a face");
+        // The loops, each walked once.
+        std::vector<std::uint8_t> seen(m.halfedge_capacity(), 0);
+        for (std::uint32_t i = 0; i < m.halfedge_capacity(); ++i) {
+            if (m.is_removed(Halfedge(i)) || !faceless(i) || seen[i]) continue;
+            std::uint32_t length = 0;
+            for (std::uint32_t h = i; !seen[h]; h = m.next(Halfedge(h)).idx) seen[h] = 1, ++length;
+            if (length < 3) return fail("boundary loop at half-edge ", i, " has ", length, " half-edges");
+            ++loops;
         }
         return true;
     }
@@ -97,15 +125,19 @@ struct Checker {
             if (m.face(Halfedge(h)).idx != f)
                 return fail("face ", f, ": its half-edge ", h, " belongs to face ", m.face(Halfedge(h)).idx);
         }
-        if (2 * std::uint64_t(m.n_edges()) != 3 * std::uint64_t(m.n_faces()))
-            return fail("2E != 3F (E = ", m.n_edges(), ", F = ", m.n_faces(), ")");
+        if (2 * std::uint64_t(m.n_edges()) != 3 * std::uint64_t(m.n_faces()) + m.n_boundary_halfedges())
+            return fail("2E != 3F + B (E = ", m.n_edges(), ", F = ", m.n_faces(), ", B = ", m.n_boundary_halfedges(),
+                        ")");
         return true;
     }
 
     bool vertices() {
-        std::vector<std::uint32_t> out_degree(m.vertex_capacity(), 0);
-        for (std::uint32_t i = 0; i < m.halfedge_capacity(); ++i)
-            if (!m.is_removed(Halfedge(i))) ++out_degree[m.from(Halfedge(i)).idx];
+        std::vector<std::uint32_t> out_degree(m.vertex_capacity(), 0), out_boundary(m.vertex_capacity(), 0);
+        for (std::uint32_t i = 0; i < m.halfedge_capacity(); ++i) {
+            if (m.is_removed(Halfedge(i))) continue;
+            ++out_degree[m.from(Halfedge(i)).idx];
+            if (faceless(i)) ++out_boundary[m.from(Halfedge(i)).idx];
+        }
         std::vector<std::uint32_t> stamp(m.vertex_capacity(), kInvalidIndex);
         for (std::uint32_t v = 0; v < m.vertex_capacity(); ++v) {
             if (m.is_removed(Vertex(v))) continue;
@@ -113,6 +145,10 @@ struct Checker {
             if (!halfedge_ok(start.idx)) return fail("vertex ", v, ": half-edge ", start.idx, " is not alive");
             if (m.from(start).idx != v)
                 return fail("vertex ", v, ": its half-edge ", start.idx, " leaves vertex ", m.from(start).idx);
+            if (out_boundary[v] > 1)
+                return fail("vertex ", v, " has ", out_boundary[v], " boundary gaps (a bow-tie vertex)");
+            if (out_boundary[v] == 1 && !faceless(start.idx))
+                return fail("vertex ", v, ": on a boundary, but its stored half-edge ", start.idx, " has a face");
             std::uint32_t ring = 0;
             Halfedge h = start;
             do {
@@ -120,20 +156,18 @@ struct Checker {
                 if (stamp[u] == v) return fail("vertex ", v, ": neighbour ", u, " appears twice (duplicate edge)");
                 stamp[u] = v;
                 if (++ring > out_degree[v]) break;
-                h = m.ccw_rotated(h);
+                h = m.cw_rotated(h);
             } while (h != start);
             if (ring != out_degree[v])
                 return fail("vertex ", v, ": its one-ring is not a single cycle (", ring,
                             " half-edges in the rotation, ", out_degree[v], " leave the vertex)");
-            if (ring < 3) return fail("vertex ", v, " has valence ", ring);
+            if (ring < 3 - out_boundary[v]) return fail("vertex ", v, " has valence ", ring);
         }
         return true;
     }
 
     bool topology() {
-        const std::int64_t chi = std::int64_t(m.n_vertices()) - m.n_edges() + m.n_faces();
-        if (chi != 2) return fail("Euler characteristic V - E + F = ", chi, ", not 2");
-        if (m.n_vertices() == 0) return true;
+        if (m.n_vertices() == 0) return fail("the mesh is empty");
         std::vector<std::uint8_t> seen(m.vertex_capacity(), 0);
         std::vector<std::uint32_t> stack;
         std::uint32_t first = 0;
@@ -144,7 +178,8 @@ struct Checker {
         while (!stack.empty()) {
             const Vertex v(stack.back());
             stack.pop_back();
-            m.for_each_neighbor(v, [&](Vertex u) {
+            m.for_each_outgoing_cw(v, [&](Halfedge h) {
+                const Vertex u = m.to(h);
                 if (!seen[u.idx]) {
                     seen[u.idx] = 1;
                     ++reached;
@@ -154,6 +189,11 @@ struct Checker {
         }
         if (reached != m.n_vertices())
             return fail("the mesh is not connected (", reached, " of ", m.n_vertices(), " vertices reachable)");
+        euler = std::int64_t(m.n_vertices()) - m.n_edges() + m.n_faces();
+        const std::int64_t twice_genus = 2 - euler - std::int64_t(loops);
+        if (twice_genus < 0 || twice_genus % 2 != 0)
+            return fail("Euler characteristic V - E + F = ", euler, " with ", loops,
+                        " boundary loops gives no whole genus");
         return true;
     }
 };
@@ -164,7 +204,16 @@ ManifoldCheck check_manifold(const Mesh& mesh) {
     Checker c{mesh, {}, false};
     // Each stage relies on the previous ones (e.g. the rotation walk needs valid next cycles).
     const bool ok = c.counts() && c.halfedges() && c.faces() && c.vertices() && c.topology();
-    return ManifoldCheck{ok, ok ? std::string() : c.err.str()};
+    ManifoldCheck r;
+    r.ok = ok;
+    if (!ok) {
+        r.error = c.err.str();
+        return r;
+    }
+    r.euler = c.euler;
+    r.boundary_loops = c.loops;
+    r.genus = int((2 - c.euler - std::int64_t(c.loops)) / 2);
+    return r;
 }
 
 void assert_manifold(const Mesh& mesh, const char* after) {

@@ -1,6 +1,7 @@
 // nmesh/mesh_check.h — the whole-mesh validator: the test suite's oracle.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "nmesh/mesh/mesh.h"
@@ -10,19 +11,31 @@ namespace nmesh {
 struct ManifoldCheck {
     bool ok = true;
     std::string error;  // the first violation found, precisely; empty when ok
+    // The topology, when ok: V - E + F, the boundary loops and the genus (2 - chi - b) / 2 of the
+    // one component.
+    long long euler = 0;
+    std::uint32_t boundary_loops = 0;
+    int genus = -1;
+    // ok, closed and of genus 0: what split, collapse and flip keep from a tetrahedron.
+    bool sphere() const { return ok && boundary_loops == 0 && genus == 0; }
     explicit operator bool() const { return ok; }
 };
 
-// Checks that `mesh` is a valid closed, connected, genus-0 triangle 2-manifold in half-edge form:
+// Checks that `mesh` is a valid connected triangle 2-manifold, closed or with boundaries, of any
+// genus, in half-edge form:
 //   - element counts match the alive slots, and each free list visits exactly the free slots;
-//   - every alive half-edge has an alive twin, next, face and target; next() cycles have length 3
-//     and stay in one face; no half-edge is a loop; orientation is consistent (a half-edge runs
-//     opposite to its twin);
+//   - every alive half-edge has an alive twin, next and target; a half-edge with a face is in a
+//     next() cycle of length 3 within that face; one without (only with the face index) is a
+//     boundary half-edge: its twin has a face, its next() is a boundary half-edge leaving its
+//     target, and its loop has at least 3 half-edges; next() is a permutation; no half-edge is
+//     a loop; orientation is consistent (a half-edge runs opposite to its twin);
 //   - every alive face's half-edge belongs to it; no alive element refers to a free slot;
+//     2E = 3F + (boundary half-edges);
 //   - every alive vertex's stored half-edge leaves it; its outgoing half-edges form one single
-//     rotation cycle; its valence is at least 3 and its neighbours are distinct (no duplicate
-//     edges);
-//   - the mesh is connected and V - E + F = 2.
+//     rotation cycle (clockwise, through the gap); a boundary vertex has exactly one outgoing
+//     boundary half-edge (no bow-tie) and stores it; the valence is at least 3 (2 on a
+//     boundary) and the neighbours are distinct (no duplicate edges);
+//   - the mesh is connected and not empty, and V - E + F + (boundary loops) is even and at most 2.
 // A mesh without its face index (Mesh::drop_faces) is checked the same way except for what
 // names faces: its triangles are its next() cycles.
 // O(V + E + F) time and memory.
