@@ -133,7 +133,7 @@ TEST_CASE("the face index stays while a mesh has boundaries") {
     CHECK_THROWS_AS(m.drop_faces(), ParameterError);
 }
 
-TEST_CASE("remove_face opens a loop, widens it, and refuses bow-ties and loose vertices") {
+TEST_CASE("remove_face opens a loop, widens it, removes ears, and refuses bow-ties") {
     Mesh m = icosahedron();
     const Face f = find_face(m, 0, 11, 5);
     REQUIRE(f.valid());
@@ -165,17 +165,31 @@ TEST_CASE("remove_face opens a loop, widens it, and refuses bow-ties and loose v
     // Now 0, 1, 7 has its edge 0-1 on the boundary; its opposite vertex 7 is interior.
     REQUIRE(m.try_remove_face(find_face(m, 0, 1, 7)));
     require_valid(m);
-    // (1, 5, 9) has edge 1-5 on the boundary, but vertex 9 is interior: allowed; (0, 7, 10)
-    // has edge 0-7 on the boundary and 10 interior: allowed; then (0, 10, 11) has two edges on
-    // the boundary (0-10 and 11-0), which would leave vertex 0 without a face: refused.
+    // (0, 7, 10) has edge 0-7 on the boundary and 10 interior: allowed; then (0, 10, 11) has two
+    // edges on the boundary (0-10 and 11-0): an ear, whose removal takes vertex 0 with it.
     REQUIRE(m.try_remove_face(find_face(m, 0, 7, 10)));
     require_valid(m);
-    const Face last_at_0 = find_face(m, 0, 10, 11);
-    REQUIRE(last_at_0.valid());
-    CHECK_FALSE(m.can_remove_face(last_at_0));
+    const Face ear = find_face(m, 0, 10, 11);
+    REQUIRE(ear.valid());
+    CHECK(m.valence(Vertex(0)) == 2);
+    Vertex gone;
+    REQUIRE(m.try_remove_face(ear, &gone));
+    CHECK(gone == Vertex(0));
+    CHECK(m.is_removed(Vertex(0)));
+    c = require_valid(m);
+    CHECK(c.boundary_loops == 1);
+    CHECK(m.n_vertices() == 11);
+    CHECK(m.loop_length(boundary_out(m, 11)) == 5);  // 11, 5, 1, 7, 10
+    check_against_brute(m);
+    // A lone triangle is never removed (it would leave no face).
+    IndexedMesh lone;
+    lone.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    lone.triangles = {{0, 1, 2}};
+    CHECK_FALSE(Mesh::from_indexed(lone, true).can_remove_face(Face(0)));
     // Every face is classified by brute force: one boundary edge and all three vertices on the
     // boundary (the opposite one would be pinched) or no boundary edge but a vertex on it: refused;
-    // no boundary vertex at all, or one boundary edge and an interior opposite vertex: allowed.
+    // no boundary vertex at all, one boundary edge and an interior opposite vertex, or two
+    // boundary edges (an ear): allowed.
     std::uint32_t pinching = 0;
     for (std::uint32_t fi = 0; fi < m.face_capacity(); ++fi) {
         const Face g(fi);
@@ -192,7 +206,7 @@ TEST_CASE("remove_face opens a loop, widens it, and refuses bow-ties and loose v
             CHECK_FALSE(m.can_remove_face(g));
         }
         if (rim_edges == 0 && rim_vertices > 0) CHECK_FALSE(m.can_remove_face(g));
-        if (rim_edges <= 1 && rim_vertices == 2 * rim_edges) CHECK(m.can_remove_face(g));
+        if ((rim_edges <= 1 && rim_vertices == 2 * rim_edges) || rim_edges == 2) CHECK(m.can_remove_face(g));
     }
     // A one-row tube: each triangle has an edge on one rim and its third vertex on the other.
     const Mesh tube = Mesh::from_indexed(torus_grid(8, 1, false), true);

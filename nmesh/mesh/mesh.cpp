@@ -520,25 +520,32 @@ bool Mesh::can_remove_face(Face f) const {
     for (int i = 0; i < 3; ++i)
         if (is_boundary(twin(hs[i]))) ++on_boundary, which = i;
     if (on_boundary == 0) return !is_boundary(from(h0)) && !is_boundary(from(h1)) && !is_boundary(from(h2));
-    // The vertex opposite the boundary edge would get a second gap if it is on a boundary.
-    return on_boundary == 1 && !is_boundary(to(next(hs[which])));
+    // The vertex opposite the boundary edge would get a second gap if it is on a boundary. An
+    // ear's middle vertex has f as its only face (one gap, on both sides of f).
+    if (on_boundary == 1) return !is_boundary(to(next(hs[which])));
+    return on_boundary == 2;
 }
 
-void Mesh::remove_face(Face f) {
+Vertex Mesh::remove_face(Face f) {
     assert(can_remove_face(f));
     const Halfedge h0 = halfedge(f);
-    Halfedge hi = h0;  // f's half-edge on the boundary, if any
-    for (int i = 0; i < 3 && !is_boundary(twin(hi)); ++i) hi = next(hi);
-    if (!is_boundary(twin(hi))) {
+    int on_boundary = 0;
+    for (Halfedge h = h0;;) {
+        on_boundary += is_boundary(twin(h));
+        if ((h = next(h)) == h0) break;
+    }
+    Vertex removed;
+    if (on_boundary == 0) {
         // A new loop of three: f's own next cycle, now without a face.
         for (Halfedge h = h0;;) {
             he_face_[h.idx] = kInvalidIndex;
             vhe_[from(h).idx] = h.idx;  // a boundary vertex stores its outgoing boundary half-edge
             ++n_boundary_;
-            h = next(h);
-            if (h == h0) break;
+            if ((h = next(h)) == h0) break;
         }
-    } else {
+    } else if (on_boundary == 1) {
+        Halfedge hi = h0;  // f's half-edge along the boundary
+        while (!is_boundary(twin(hi))) hi = next(hi);
         // f = [hi: u -> w, hn: w -> o, hp: o -> u] beside the loop ... pb -> bt -> nb ..., bt = w -> u:
         // the loop becomes ... pb -> hn -> hp -> nb ..., and the edge u - w goes.
         const Halfedge bt = twin(hi), hn = next(hi), hp = next(hn);
@@ -547,16 +554,36 @@ void Mesh::remove_face(Face f) {
         he_[pb.idx].next = hn.idx;
         he_[hp.idx].next = nb.idx;
         he_face_[hn.idx] = he_face_[hp.idx] = kInvalidIndex;
-        he_face_[hi.idx] = he_face_[bt.idx] = kInvalidIndex;  // dead slots read as faceless
-        vhe_[w.idx] = hn.idx;                                 // w's outgoing boundary half-edge was bt
+        vhe_[w.idx] = hn.idx;  // w's outgoing boundary half-edge was bt
         vhe_[o.idx] = hp.idx;
         n_boundary_ += 1;  // hn and hp in, bt out
         delete_edge(edge(hi));
+    } else {
+        // An ear f = [hi: u -> v, hn: v -> w, hp: w -> u] with u - v and v - w on the loop
+        // ... pb -> (w -> v) -> (v -> u) -> nb ...: the loop becomes ... pb -> hp -> nb ..., and v goes
+        // with its two edges.
+        Halfedge hi = h0;
+        while (!(is_boundary(twin(hi)) && is_boundary(twin(next(hi))))) hi = next(hi);
+        const Halfedge hn = next(hi), hp = next(hn);
+        const Halfedge wv = twin(hn), vu = twin(hi);
+        const Halfedge pb = prev_on_boundary(wv), nb = next(vu);
+        const Vertex w = to(hn);
+        removed = to(hi);
+        he_[pb.idx].next = hp.idx;
+        he_[hp.idx].next = nb.idx;
+        he_face_[hp.idx] = kInvalidIndex;
+        vhe_[w.idx] = hp.idx;  // w's outgoing boundary half-edge was w -> v
+        // u's was nb, which stays.
+        n_boundary_ -= 1;  // hp in, w -> v and v -> u out
+        delete_edge(edge(hi));
+        delete_edge(edge(hn));
+        delete_vertex(removed);
     }
     delete_face(f);
 #ifdef NMESH_CHECK_INVARIANTS
     assert_manifold(*this, "remove_face");
 #endif
+    return removed;
 }
 
 // ---- joining two loops ----------------------------------------------------------------------------

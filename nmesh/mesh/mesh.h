@@ -259,13 +259,14 @@ public:
     FlipRecord flip(Halfedge h);
     void unflip(const FlipRecord& r);
 
-    // Face removal: f's half-edges join the boundary (a new loop of 3, or a loop widened across
-    // f's one boundary edge, whose edge goes). Allowed when at most one of f's edges is on a
-    // boundary and no vertex of f would get a second gap: with no boundary edge, no vertex of f
-    // may be on a boundary; with one, the vertex opposite it may not. So no bow-tie vertex, no
-    // vertex left without a face, and the mesh stays connected. Needs the face index.
+    // Face removal: f's half-edges join the boundary. With no edge of f on a boundary, a new loop
+    // of three opens (allowed when no vertex of f is on a boundary); with one, the loop widens
+    // across it and that edge goes (allowed when the vertex opposite it is not on a boundary);
+    // with two, f is an ear: its vertex between them, in no other face, goes with both edges
+    // (returned; otherwise an invalid handle). Never with three (a lone triangle). So no bow-tie
+    // vertex and no vertex without a face, and the mesh stays connected. Needs the face index.
     bool can_remove_face(Face f) const;
-    void remove_face(Face f);
+    Vertex remove_face(Face f);
 
     // Join two boundary loops with a tube of new faces (a handle when both lie on one component).
     // `a` and `b` are boundary half-edges of different loops, of lengths m and n; the tube starts
@@ -292,9 +293,10 @@ public:
         if (record) *record = r;
         return true;
     }
-    bool try_remove_face(Face f) {
+    bool try_remove_face(Face f, Vertex* removed = nullptr) {
         if (!can_remove_face(f)) return false;
-        remove_face(f);
+        const Vertex v = remove_face(f);
+        if (removed) *removed = v;
         return true;
     }
     bool try_join_loops(Halfedge a, Halfedge b) {
