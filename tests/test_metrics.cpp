@@ -12,7 +12,6 @@
 #include <fstream>
 #include <limits>
 #include <numeric>
-#include <map>
 #include <random>
 #include <sstream>
 #include <string>
@@ -23,11 +22,13 @@
 #include "nmesh/metrics/orientation.h"
 #include "nmesh/reconstruct.h"
 #include "cloud_fixtures.h"
+#include "mesh_fixtures.h"
 
 using nmesh::EvalOptions;
 using nmesh::IndexedMesh;
 using nmesh::QualityReport;
 using nmesh::Vec3;
+using nmesh::test::icosphere;
 
 namespace {
 
@@ -60,42 +61,6 @@ IndexedMesh unit_cube() {
     m.triangles = {{0, 1, 3}, {0, 3, 2}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
                    {2, 3, 7}, {2, 7, 6}, {0, 2, 6}, {0, 6, 4}, {1, 3, 7}, {1, 7, 5}};
     orient_outward(m, {0.5f, 0.5f, 0.5f});
-    return m;
-}
-
-// The unit icosphere: the icosahedron with each triangle split in 4, `levels` times, and the
-// vertices pushed onto the sphere. Genus 0, close to the sphere.
-IndexedMesh icosphere(int levels, const Vec3& center = {0, 0, 0}) {
-    const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
-    IndexedMesh m;
-    m.positions = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
-                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
-    m.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                   {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                   {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-    for (Vec3& p : m.positions) p = nmesh::normalized(p);
-    for (int l = 0; l < levels; ++l) {
-        std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mid;
-        const auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
-            const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-            const auto it = mid.find(key);
-            if (it != mid.end()) return it->second;
-            m.positions.push_back(nmesh::normalized(m.positions[a] + m.positions[b]));
-            return mid[key] = std::uint32_t(m.positions.size() - 1);
-        };
-        std::vector<Triangle> next;
-        for (const Triangle& f : m.triangles) {
-            const std::uint32_t ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]);
-            const std::uint32_t ca = midpoint(f[2], f[0]);
-            next.push_back({f[0], ab, ca});
-            next.push_back({f[1], bc, ab});
-            next.push_back({f[2], ca, bc});
-            next.push_back({ab, bc, ca});
-        }
-        m.triangles = next;
-    }
-    orient_outward(m, {0, 0, 0});
-    for (Vec3& p : m.positions) p += center;
     return m;
 }
 
