@@ -77,7 +77,7 @@ constexpr const char* kEvalUsage =
     "Measures MESH against the cloud POINTS: the paper's DM(X,T) (eq. 10-11), point-to-surface and\n"
     "surface-to-point distances, the Hausdorff distance (absolute and relative to the cloud's\n"
     "bounding-box diagonal), topology (closed, manifold, Euler characteristic, genus, components,\n"
-    "self-intersections) and triangle quality.\n"
+    "boundary loops, edges and length, self-intersections) and triangle quality.\n"
     "\n"
     "options:\n"
     "  --json                 print JSON instead of text\n";
