@@ -53,12 +53,14 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
 
 #include "nmesh/bounding_box.h"
 #include "nmesh/indexed_mesh.h"
+#include "nmesh/metrics.h"
 #include "nmesh/point_cloud.h"
 #include "nmesh/vec3.h"
 
@@ -94,10 +96,18 @@ struct FileInfo {
     std::uint64_t non_finite = 0;          // points with a NaN or Inf coordinate
     std::uint64_t faces = 0;               // faces in the file (0 when it has none)
     BoundingBox bounds;                    // of the finite points (empty if there are none)
+    // When the file holds faces: the topology of the mesh they make, fan-triangulated as read_mesh
+    // does (see mesh_topology in metrics.h; non-finite coordinates allowed). Empty when there are
+    // none, or when they do not make a mesh (a face with fewer than 3 corners, an index out of
+    // range...): then topology_error holds the error reading them gave, as read_mesh throws it.
+    std::optional<MeshTopology> topology;
+    std::string topology_error;
 };
 
 // Reads the file at `path` completely (so every error read_points reports is reported here too)
-// and summarises it. Faces are counted, not stored. Throws IoError. O(file size).
+// and summarises it, the topology of its faces included. Throws IoError, only where read_points
+// would. O(file size) and O(F log F) for F faces; the faces are held while their topology is
+// computed. A file whose faces do not make a mesh is read twice, the second time without them.
 FileInfo inspect_file(const std::string& path);
 
 // ---- Lower level: the vertices and faces of a file as stored; read_mesh builds on this. ----

@@ -13,8 +13,8 @@
 //                      triangle). Both depend on the triangles' corners only, not on the order
 //                      they are listed in, their first corners or the vertex numbering.
 //   Hausdorff          max(point-to-surface max, surface-to-cloud max).
-//   topology           closed, manifold, Euler characteristic, genus, components,
-//                      self-intersections (exact), degenerate triangles.
+//   topology           closed, manifold, Euler characteristic, genus, components, boundary loops,
+//                      edges and length, self-intersections (exact), degenerate triangles.
 //   orientation        signed volume, faces pointing inward.
 //   triangle quality   the smallest angle of each triangle: min, mean, share under 10 degrees.
 #pragma once
@@ -43,6 +43,33 @@ struct EvalOptions {
     std::function<void(double fraction)> progress;
 };
 
+// The topology of a triangle mesh, over the vertices used by at least one triangle. A boundary
+// edge lies in exactly one triangle.
+struct MeshTopology {
+    // Every edge lies in exactly two triangles (no boundary edge, no edge shared by three or more).
+    bool closed = false;
+    // A surface, with or without boundary: every edge lies in one or two triangles, two triangles
+    // on one edge run it in opposite directions (consistently oriented, hence orientable), no
+    // triangle repeats a vertex, and the triangles around every vertex form a single fan, linked
+    // through shared edges (no bow-tie vertex, where fans meet only at their tip).
+    bool manifold = false;
+    long long euler = 0;  // the Euler characteristic chi = V - E + F
+    // The number of handles: the sum over components of (2 - chi - b) / 2, with chi and b the
+    // component's Euler characteristic and boundary loops (0 for a sphere, a disc or a tube, 1 for
+    // a torus with or without holes). -1 unless manifold.
+    int genus = -1;
+    std::size_t components = 0;         // connected through shared vertices
+    std::size_t isolated_vertices = 0;  // positions used by no triangle
+    // Boundary edges fall into loops: at each vertex, the boundary edges of the triangles of one
+    // fan there are in one loop. On a manifold each boundary vertex has one boundary edge in and
+    // one out, and each loop is a closed polygon, a hole's rim. Elsewhere a loop may branch or
+    // stop short: two triangles sharing only a corner have a loop each, and a loop ends where it
+    // meets an edge of three or more triangles.
+    std::size_t boundary_loops = 0;  // 0 when closed
+    std::size_t boundary_edges = 0;
+    double boundary_length = 0.0;  // the boundary edges' total length, in the mesh's units
+};
+
 struct QualityReport {
     // Sizes.
     std::size_t vertices = 0;  // positions in the mesh, referenced or not
@@ -58,14 +85,17 @@ struct QualityReport {
     double s2p_max = 0.0, s2p_max_rel = 0.0;
     double hausdorff = 0.0, hausdorff_rel = 0.0;
 
-    // Topology, over the vertices used by at least one triangle.
-    bool closed = false;                   // every edge lies in exactly two triangles
-    bool manifold = false;                 // every edge in one or two triangles, consistently oriented, and the
-                                           // triangles around every vertex form one single fan
-    long long euler = 0;                   // V - E + F
-    int genus = -1;                        // sum over components of (2 - chi) / 2; -1 unless closed and manifold
-    std::size_t components = 0;            // connected through shared vertices
-    std::size_t isolated_vertices = 0;     // positions used by no triangle
+    // Topology: the fields of MeshTopology (see there), the boundary's length also relative to
+    // bbox_diagonal.
+    bool closed = false;                // every edge in exactly two triangles
+    bool manifold = false;              // a surface with or without boundary, oriented, no bow-tie vertex
+    long long euler = 0;                // V - E + F
+    int genus = -1;                     // handles, summed over components; -1 unless manifold
+    std::size_t components = 0;         // connected through shared vertices
+    std::size_t isolated_vertices = 0;  // positions used by no triangle
+    std::size_t boundary_loops = 0;     // holes' rims (0 when closed)
+    std::size_t boundary_edges = 0;     // edges in exactly one triangle
+    double boundary_length = 0.0, boundary_length_rel = 0.0;
     std::size_t degenerate_triangles = 0;  // a repeated vertex or zero area
     // Pairs of non-degenerate triangles that intersect, by an exact test: triangles sharing no
     // vertex that have any point in common, triangles sharing one vertex that meet anywhere else
@@ -94,7 +124,12 @@ struct QualityReport {
 // exist; ParameterError if options.surface_samples is 0.
 QualityReport evaluate(PointSpan points, const IndexedMesh& mesh, const EvalOptions& options = {});
 
-// The report as one flat JSON object, keys named as the fields above (genus and undefined
+// The topology of `mesh`, as evaluate() reports it, without a cloud (for `nmesh info`).
+// O(F log F) for F triangles. Throws InputError if a triangle refers to a vertex that does not
+// exist. Coordinates matter only to boundary_length (not finite when a boundary vertex is not).
+MeshTopology mesh_topology(const IndexedMesh& mesh);
+
+// The report as one flat JSON object, keys named as the fields above (genus when -1 and undefined
 // relative values are written as null). No trailing newline.
 void write_json(std::ostream& out, const QualityReport& report);
 // The report as aligned "name: value" lines, for people.

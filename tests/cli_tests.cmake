@@ -102,6 +102,40 @@ expect(eval_json 0 "\"closed\": true.*\"genus\": 0" ${NMESH} eval ${DATA} ${WORK
 expect(eval_text 0 "dm_x_t" ${NMESH} eval ${DATA} ${WORK}/quiet.obj)
 expect(info 0 "element vertex: 35947" ${NMESH} info ${DATA})
 expect(info_mesh 0 "faces: 1996" ${NMESH} info ${WORK}/mesh.ply)
+expect(info_mesh_topology 0
+  "\ncomponents: 1\nclosed: yes\nmanifold: yes\nboundary loops: 0\neuler characteristic: 2\ngenus: 0\n$"
+  ${NMESH} info ${WORK}/mesh.ply)
+expect(eval_boundary 0 "\"genus\": 0,.*\"boundary_loops\": 0,\n  \"boundary_edges\": 0,"
+  ${NMESH} eval ${DATA} ${WORK}/mesh.ply --json)
+
+# The topology `info` reports for small meshes: a square tube open at both ends (OFF, four
+# quads), a 4 x 4 grid of quads wrapped round both ways (OBJ, a torus) and two triangles sharing
+# one vertex (a bow-tie).
+file(WRITE ${WORK}/tube.off "OFF\n8 4 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+  "4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n")
+expect(info_tube 0 "closed: no\nmanifold: yes\nboundary loops: 2 \\(8 edges, length 8\\)\neuler characteristic: 0\ngenus: 0\n"
+  ${NMESH} info ${WORK}/tube.off)
+set(torus_obj "")
+foreach(i RANGE 3)
+  foreach(j RANGE 3)
+    string(APPEND torus_obj "v ${i} ${j} 0\n")
+  endforeach()
+endforeach()
+foreach(i RANGE 3)
+  foreach(j RANGE 3)
+    math(EXPR a "${i} * 4 + ${j} + 1")
+    math(EXPR b "(${i} + 1) % 4 * 4 + ${j} + 1")
+    math(EXPR c "(${i} + 1) % 4 * 4 + (${j} + 1) % 4 + 1")
+    math(EXPR d "${i} * 4 + (${j} + 1) % 4 + 1")
+    string(APPEND torus_obj "f ${a} ${b} ${c} ${d}\n")
+  endforeach()
+endforeach()
+file(WRITE ${WORK}/torus.obj "${torus_obj}")
+expect(info_torus 0 "faces: 16\n.*closed: yes\nmanifold: yes\nboundary loops: 0\neuler characteristic: 0\ngenus: 1\n"
+  ${NMESH} info ${WORK}/torus.obj)
+file(WRITE ${WORK}/bow_tie.obj "v 0 0 0\nv 1 0 0\nv 1 1 0\nv -1 0 0\nv -1 -1 0\nf 1 2 3\nf 1 4 5\n")
+expect(info_bow_tie 0 "manifold: no\nboundary loops: 2 \\(6 edges, [^\n]*\\)\neuler characteristic: 1\ngenus: - \\(not a manifold\\)\n"
+  ${NMESH} info ${WORK}/bow_tie.obj)
 expect(no_edge_swap 0 "0 swaps kept of 0 tried"
   ${NMESH} reconstruct ${DATA} -o ${WORK}/nm.off --vertices 300 --no-edge-swap)
 # The finishing stage runs by default and is reported; --no-finish skips it and changes the mesh.

@@ -11,11 +11,12 @@
 #include <cstdlib>
 #include <fstream>
 #include <limits>
-#include <numeric>
 #include <map>
+#include <numeric>
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "nmesh/error.h"
@@ -23,11 +24,14 @@
 #include "nmesh/metrics/orientation.h"
 #include "nmesh/reconstruct.h"
 #include "cloud_fixtures.h"
+#include "mesh_fixtures.h"
 
 using nmesh::EvalOptions;
 using nmesh::IndexedMesh;
+using nmesh::MeshTopology;
 using nmesh::QualityReport;
 using nmesh::Vec3;
+using nmesh::test::icosphere;
 
 namespace {
 
@@ -63,42 +67,6 @@ IndexedMesh unit_cube() {
     return m;
 }
 
-// The unit icosphere: the icosahedron with each triangle split in 4, `levels` times, and the
-// vertices pushed onto the sphere. Genus 0, close to the sphere.
-IndexedMesh icosphere(int levels, const Vec3& center = {0, 0, 0}) {
-    const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
-    IndexedMesh m;
-    m.positions = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
-                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
-    m.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                   {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                   {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-    for (Vec3& p : m.positions) p = nmesh::normalized(p);
-    for (int l = 0; l < levels; ++l) {
-        std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mid;
-        const auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
-            const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-            const auto it = mid.find(key);
-            if (it != mid.end()) return it->second;
-            m.positions.push_back(nmesh::normalized(m.positions[a] + m.positions[b]));
-            return mid[key] = std::uint32_t(m.positions.size() - 1);
-        };
-        std::vector<Triangle> next;
-        for (const Triangle& f : m.triangles) {
-            const std::uint32_t ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]);
-            const std::uint32_t ca = midpoint(f[2], f[0]);
-            next.push_back({f[0], ab, ca});
-            next.push_back({f[1], bc, ab});
-            next.push_back({f[2], ca, bc});
-            next.push_back({ab, bc, ca});
-        }
-        m.triangles = next;
-    }
-    orient_outward(m, {0, 0, 0});
-    for (Vec3& p : m.positions) p += center;
-    return m;
-}
-
 // A torus (major radius R, minor r) as a u-by-v grid of quads split in two: genus 1.
 IndexedMesh torus(float R, float r, int nu, int nv, const Vec3& center = {0, 0, 0}) {
     IndexedMesh m;
@@ -123,6 +91,72 @@ IndexedMesh merged(const IndexedMesh& a, const IndexedMesh& b) {
     const std::uint32_t shift = std::uint32_t(a.positions.size());
     m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
     for (Triangle t : b.triangles) m.triangles.push_back({t[0] + shift, t[1] + shift, t[2] + shift});
+    return m;
+}
+
+// A band of quads split in two round the z axis: ring j, of `around` vertices, at radius
+// radii[j] and height heights[j]. Rings of one radius at several heights make a tube open at both
+// ends, two rings of different radii in one plane a flat annulus: either way genus 0 with two
+// boundary loops, each a regular polygon.
+IndexedMesh ring_strip(int around, const std::vector<float>& radii, const std::vector<float>& heights) {
+    IndexedMesh m;
+    for (std::size_t j = 0; j < radii.size(); ++j)
+        for (int i = 0; i < around; ++i) {
+            const float u = 6.2831853f * float(i) / float(around);
+            m.positions.push_back({radii[j] * std::cos(u), radii[j] * std::sin(u), heights[j]});
+        }
+    const auto id = [&](int i, std::size_t j) {
+        return std::uint32_t(j * std::size_t(around) + std::size_t(i % around));
+    };
+    for (std::size_t j = 0; j + 1 < radii.size(); ++j)
+        for (int i = 0; i < around; ++i) {
+            m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+            m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+        }
+    return m;
+}
+
+// The perimeter of a regular polygon of `sides` sides inscribed in a circle of radius r.
+double polygon_perimeter(int sides, double r) { return 2.0 * sides * r * std::sin(3.14159265358979323846 / sides); }
+
+// The length of the edge from a to b, in double.
+double edge_length(const IndexedMesh& m, std::uint32_t a, std::uint32_t b) {
+    const Vec3 &p = m.positions[a], &q = m.positions[b];
+    const double dx = double(p.x) - q.x, dy = double(p.y) - q.y, dz = double(p.z) - q.z;
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+double perimeter(const IndexedMesh& m, const Triangle& t) {
+    return edge_length(m, t[0], t[1]) + edge_length(m, t[1], t[2]) + edge_length(m, t[2], t[0]);
+}
+
+// torus() with its first quad (triangles 0 and 1) removed: a torus with a square hole. kRim lists
+// the hole's corners in the order the removed quad ran them: (0, 0), (1, 0), (1, 1), (0, 1) of the
+// grid, for the tori below (nv = 8).
+constexpr int kHoleTorusAcross = 8;
+constexpr std::array<std::uint32_t, 4> kRim = {0, kHoleTorusAcross, kHoleTorusAcross + 1, 1};
+IndexedMesh torus_with_hole(const Vec3& center = {0, 0, 0}) {
+    IndexedMesh m = torus(1.0f, 0.3f, 12, kHoleTorusAcross, center);
+    m.triangles.erase(m.triangles.begin(), m.triangles.begin() + 2);
+    return m;
+}
+
+// Two tori with holes welded along the holes' rims: their connected sum, a closed surface of
+// genus 2. The second torus's rim vertices give way to the first's (and are left unused), rim
+// vertex k to the first's rim vertex {1, 0, 3, 2}[k], so that each welded edge is run one way by
+// the triangles of one torus and the other way by the other's. Only its topology is meant: the
+// welded triangles stretch from one torus to the other.
+IndexedMesh double_torus() {
+    IndexedMesh m = merged(torus_with_hole(), torus_with_hole({3, 0, 0}));
+    const std::uint32_t shift = std::uint32_t(m.positions.size() / 2);
+    constexpr int partner[4] = {1, 0, 3, 2};
+    for (Triangle& t : m.triangles)
+        for (std::uint32_t& v : t)
+            for (int k = 0; k < 4; ++k)
+                if (v == shift + kRim[k]) {
+                    v = kRim[partner[k]];
+                    break;
+                }
     return m;
 }
 
@@ -545,7 +579,26 @@ TEST_CASE("topology of closed surfaces") {
         CHECK(r.euler == 0);
         CHECK(r.genus == 1);
         CHECK(r.components == 1);
+        CHECK(r.boundary_loops == 0);
+        CHECK(r.boundary_edges == 0);
+        CHECK(r.boundary_length == 0.0);
         CHECK(r.self_intersections == 0);
+        const MeshTopology small = nmesh::mesh_topology(torus(1.0f, 0.3f, 8, 6));
+        CHECK(small.closed);
+        CHECK(small.manifold);
+        CHECK(small.euler == 0);
+        CHECK(small.genus == 1);
+        CHECK(small.boundary_loops == 0);
+    }
+    SUBCASE("double torus") {
+        const MeshTopology t = nmesh::mesh_topology(double_torus());
+        CHECK(t.closed);
+        CHECK(t.manifold);
+        CHECK(t.components == 1);
+        CHECK(t.euler == -2);
+        CHECK(t.genus == 2);
+        CHECK(t.boundary_loops == 0);
+        CHECK(t.isolated_vertices == 4);  // the second torus's rim, welded to the first's
     }
     SUBCASE("genus adds up over components") {
         // A torus and a sphere: chi = 0 + 2, so (2 - chi) / 2 over the whole would say 0.
@@ -553,8 +606,11 @@ TEST_CASE("topology of closed surfaces") {
         CHECK(r.components == 2);
         CHECK(r.euler == 2);
         CHECK(r.genus == 1);
-        const IndexedMesh tori = merged(torus(1.0f, 0.3f, 16, 8), torus(1.0f, 0.3f, 16, 8, {4, 0, 0}));
-        CHECK(quick_evaluate(tori).genus == 2);
+        const QualityReport tori =
+            quick_evaluate(merged(torus(1.0f, 0.3f, 16, 8), torus(1.0f, 0.3f, 16, 8, {4, 0, 0})));
+        CHECK(tori.components == 2);
+        CHECK(tori.euler == 0);
+        CHECK(tori.genus == 2);
     }
     SUBCASE("two disjoint tetrahedra") {
         const QualityReport r = quick_evaluate(merged(tetrahedron(), tetrahedron({10, 0, 0})));
@@ -568,16 +624,6 @@ TEST_CASE("topology of closed surfaces") {
 }
 
 TEST_CASE("topology of defective meshes") {
-    SUBCASE("open: a tetrahedron without one face") {
-        IndexedMesh m = tetrahedron();
-        m.triangles.pop_back();
-        const QualityReport r = quick_evaluate(m);
-        CHECK_FALSE(r.closed);
-        CHECK(r.manifold);  // a disc: open fans are fine
-        CHECK(r.euler == 1);
-        CHECK(r.genus == -1);
-        CHECK(r.isolated_vertices == 0);
-    }
     SUBCASE("three triangles on one edge") {
         IndexedMesh m;
         m.positions = {{0, 0, 0}, {1, 0, 0}, {0.5f, 1, 0}, {0.5f, -1, 0}, {0.5f, 0, 1}};
@@ -585,8 +631,13 @@ TEST_CASE("topology of defective meshes") {
         const QualityReport r = quick_evaluate(m);
         CHECK_FALSE(r.closed);
         CHECK_FALSE(r.manifold);
+        CHECK(r.genus == -1);
         CHECK(r.components == 1);
         CHECK(r.euler == 5 - 7 + 3);
+        // Each triangle's two other edges are boundary edges; no fan reaches across the shared
+        // edge, so each triangle's rim is a loop of its own.
+        CHECK(r.boundary_edges == 6);
+        CHECK(r.boundary_loops == 3);
     }
     SUBCASE("one face turned inside out") {
         IndexedMesh m = tetrahedron();
@@ -607,9 +658,12 @@ TEST_CASE("topology of defective meshes") {
         const QualityReport r = quick_evaluate(m);
         CHECK(r.closed);  // every edge still has two triangles
         CHECK_FALSE(r.manifold);
+        CHECK(r.genus == -1);
         CHECK(r.components == 1);
         CHECK(r.isolated_vertices == 1);
         CHECK(r.euler == 7 - 12 + 8);
+        CHECK(r.boundary_loops == 0);
+        CHECK(r.boundary_edges == 0);
     }
     SUBCASE("degenerate triangles") {
         IndexedMesh m = unit_cube();
@@ -622,6 +676,358 @@ TEST_CASE("topology of defective meshes") {
         CHECK(r.min_angle_min_deg == 0.0);
         CHECK(r.share_under_10deg == doctest::Approx(2.0 / 14.0));
     }
+}
+
+TEST_CASE("topology of surfaces with boundaries") {
+    SUBCASE("a tetrahedron without one face: a disc") {
+        IndexedMesh m = tetrahedron();
+        const Triangle gone = m.triangles.back();
+        m.triangles.pop_back();
+        const QualityReport r = quick_evaluate(m);
+        CHECK_FALSE(r.closed);
+        CHECK(r.manifold);  // open fans are fine
+        CHECK(r.euler == 1);
+        CHECK(r.genus == 0);
+        CHECK(r.components == 1);
+        CHECK(r.isolated_vertices == 0);
+        CHECK(r.boundary_loops == 1);
+        CHECK(r.boundary_edges == 3);
+        CHECK(r.boundary_length == doctest::Approx(3 * 2 * std::sqrt(2.0)));
+        CHECK(r.boundary_length == doctest::Approx(perimeter(m, gone)).epsilon(1e-12));
+        CHECK(r.boundary_length_rel == doctest::Approx(r.boundary_length / r.bbox_diagonal));
+    }
+    SUBCASE("an icosphere without one face, without two apart, without two side by side") {
+        const IndexedMesh sphere = icosphere(2);
+        IndexedMesh one = sphere;
+        one.triangles.erase(one.triangles.begin() + 17);
+        const MeshTopology a = nmesh::mesh_topology(one);
+        CHECK(a.manifold);
+        CHECK(a.genus == 0);
+        CHECK(a.euler == 1);
+        CHECK(a.boundary_loops == 1);
+        CHECK(a.boundary_edges == 3);
+        CHECK(a.boundary_length == doctest::Approx(perimeter(sphere, sphere.triangles[17])).epsilon(1e-12));
+
+        // Two faces sharing no vertex: two holes, an annulus (chi 0).
+        const Triangle& first = sphere.triangles[0];
+        std::size_t apart = 1;
+        const auto shares_a_vertex = [&](const Triangle& t) {
+            return std::any_of(t.begin(), t.end(), [&](std::uint32_t v) {
+                return std::find(first.begin(), first.end(), v) != first.end();
+            });
+        };
+        while (shares_a_vertex(sphere.triangles[apart])) ++apart;
+        IndexedMesh two = sphere;
+        two.triangles.erase(two.triangles.begin() + std::ptrdiff_t(apart));
+        two.triangles.erase(two.triangles.begin());
+        const MeshTopology b = nmesh::mesh_topology(two);
+        CHECK(b.manifold);
+        CHECK(b.genus == 0);
+        CHECK(b.euler == 0);
+        CHECK(b.boundary_loops == 2);
+        CHECK(b.boundary_edges == 6);
+        CHECK(b.boundary_length ==
+              doctest::Approx(perimeter(sphere, first) + perimeter(sphere, sphere.triangles[apart])).epsilon(1e-12));
+
+        // Two faces sharing an edge: one hole, a rim of four edges.
+        std::size_t beside = 1;
+        while (std::count_if(sphere.triangles[beside].begin(), sphere.triangles[beside].end(), [&](std::uint32_t v) {
+                   return std::find(first.begin(), first.end(), v) != first.end();
+               }) != 2)
+            ++beside;
+        IndexedMesh pair = sphere;
+        pair.triangles.erase(pair.triangles.begin() + std::ptrdiff_t(beside));
+        pair.triangles.erase(pair.triangles.begin());
+        const MeshTopology c = nmesh::mesh_topology(pair);
+        CHECK(c.manifold);
+        CHECK(c.genus == 0);
+        CHECK(c.boundary_loops == 1);
+        CHECK(c.boundary_edges == 4);
+    }
+    SUBCASE("a tube open at both ends") {
+        const QualityReport r = quick_evaluate(ring_strip(16, {1, 1, 1, 1}, {0, 0.5f, 1, 1.5f}));
+        CHECK_FALSE(r.closed);
+        CHECK(r.manifold);
+        CHECK(r.components == 1);
+        CHECK(r.euler == 0);
+        CHECK(r.genus == 0);
+        CHECK(r.boundary_loops == 2);
+        CHECK(r.boundary_edges == 32);
+        CHECK(r.boundary_length == doctest::Approx(2 * polygon_perimeter(16, 1.0)).epsilon(1e-6));
+    }
+    SUBCASE("a flat annulus") {
+        const QualityReport r = quick_evaluate(ring_strip(12, {1, 2}, {0, 0}));
+        CHECK(r.manifold);
+        CHECK(r.euler == 0);
+        CHECK(r.genus == 0);
+        CHECK(r.boundary_loops == 2);
+        CHECK(r.boundary_edges == 24);
+        CHECK(r.boundary_length ==
+              doctest::Approx(polygon_perimeter(12, 1.0) + polygon_perimeter(12, 2.0)).epsilon(1e-6));
+    }
+    SUBCASE("a torus with a hole keeps its handle") {
+        const IndexedMesh m = torus_with_hole();
+        const QualityReport r = quick_evaluate(m);
+        CHECK_FALSE(r.closed);
+        CHECK(r.manifold);
+        CHECK(r.euler == -1);
+        CHECK(r.genus == 1);
+        CHECK(r.boundary_loops == 1);
+        CHECK(r.boundary_edges == 4);
+        double rim = 0.0;
+        for (int k = 0; k < 4; ++k) rim += edge_length(m, kRim[std::size_t(k)], kRim[std::size_t((k + 1) % 4)]);
+        CHECK(r.boundary_length == doctest::Approx(rim).epsilon(1e-12));
+    }
+    SUBCASE("genus and loops add up per component") {
+        // A disc and a torus: chi = 1 + 0 and b = 1, so (2 - chi - b) / 2 over the whole would be
+        // 0; per component it is 0 + 1.
+        IndexedMesh disc = tetrahedron({5, 0, 0});
+        disc.triangles.pop_back();
+        const MeshTopology t = nmesh::mesh_topology(merged(torus(1.0f, 0.3f, 16, 8), disc));
+        CHECK(t.manifold);
+        CHECK(t.components == 2);
+        CHECK(t.euler == 1);
+        CHECK(t.boundary_loops == 1);
+        CHECK(t.genus == 1);
+        const MeshTopology u = nmesh::mesh_topology(merged(torus_with_hole(), ring_strip(8, {1, 1}, {5, 6})));
+        CHECK(u.components == 2);
+        CHECK(u.boundary_loops == 3);
+        CHECK(u.euler == -1);
+        CHECK(u.genus == 1);
+    }
+    SUBCASE("a Moebius strip is no oriented surface") {
+        // A band of 10 quads whose ends are joined with a half twist: no orientation of its
+        // triangles agrees across every edge. Its rim is one loop, twice the band's length.
+        IndexedMesh m;
+        constexpr int n = 10;
+        for (int i = 0; i < n; ++i) {
+            const float u = 6.2831853f * float(i) / float(n), w = 0.2f;
+            const float c = std::cos(u / 2), d = std::sin(u / 2);
+            m.positions.push_back({(1 + w * c) * std::cos(u), (1 + w * c) * std::sin(u), w * d});
+            m.positions.push_back({(1 - w * c) * std::cos(u), (1 - w * c) * std::sin(u), -w * d});
+        }
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const std::uint32_t a = 2 * i, b = 2 * i + 1;
+            // After the last quad the two sides of the band change places.
+            const std::uint32_t c = i + 1 < n ? 2 * i + 2 : 1, d = i + 1 < n ? 2 * i + 3 : 0;
+            m.triangles.push_back({a, c, d});
+            m.triangles.push_back({a, d, b});
+        }
+        const MeshTopology t = nmesh::mesh_topology(m);
+        CHECK_FALSE(t.closed);
+        CHECK_FALSE(t.manifold);
+        CHECK(t.genus == -1);
+        CHECK(t.euler == 0);
+        CHECK(t.boundary_loops == 1);
+        CHECK(t.boundary_edges == 2 * n);
+    }
+}
+
+TEST_CASE("topology: bow-tie vertices, where fans meet only at their tip, are not manifold") {
+    SUBCASE("two triangles sharing one vertex") {
+        IndexedMesh m;
+        m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}};
+        m.triangles = {{0, 1, 2}, {0, 3, 4}};
+        const QualityReport r = quick_evaluate(m);
+        CHECK_FALSE(r.closed);
+        CHECK_FALSE(r.manifold);
+        CHECK(r.genus == -1);
+        CHECK(r.components == 1);
+        CHECK(r.euler == 5 - 6 + 2);
+        CHECK(r.boundary_edges == 6);
+        CHECK(r.boundary_loops == 2);  // each fan at the shared vertex has its own rim
+        // Apart, the same two triangles are two discs.
+        m.positions.push_back(m.positions[0]);
+        m.triangles[1][0] = 5;
+        const QualityReport apart = quick_evaluate(m);
+        CHECK(apart.manifold);
+        CHECK(apart.genus == 0);
+        CHECK(apart.components == 2);
+        CHECK(apart.boundary_loops == 2);
+    }
+    SUBCASE("two open pyramids joined at their apex") {
+        // Two fans of four triangles round one apex, one above it and one below.
+        IndexedMesh m;
+        m.positions = {{0, 0, 0}};
+        for (const float z : {1.0f, -1.0f})
+            for (int i = 0; i < 4; ++i) {
+                const float u = 1.5707963f * float(i);
+                m.positions.push_back({std::cos(u), std::sin(u), z});
+            }
+        for (std::uint32_t k = 0; k < 2; ++k)
+            for (std::uint32_t i = 0; i < 4; ++i) m.triangles.push_back({0, 1 + 4 * k + i, 1 + 4 * k + (i + 1) % 4});
+        const QualityReport r = quick_evaluate(m);
+        CHECK_FALSE(r.manifold);
+        CHECK(r.genus == -1);
+        CHECK(r.components == 1);
+        CHECK(r.boundary_loops == 2);
+        CHECK(r.boundary_edges == 8);
+        CHECK(r.boundary_length == doctest::Approx(2 * polygon_perimeter(4, 1.0)).epsilon(1e-6));
+        // One pyramid alone is a disc.
+        m.triangles.resize(4);
+        const QualityReport one = quick_evaluate(m);
+        CHECK(one.manifold);
+        CHECK(one.genus == 0);
+        CHECK(one.boundary_loops == 1);
+        CHECK(one.isolated_vertices == 4);
+    }
+    SUBCASE("an icosphere without two faces that share one vertex") {
+        const IndexedMesh sphere = icosphere(1);
+        const Triangle& first = sphere.triangles[0];
+        std::size_t tip = 1;
+        while (std::count_if(sphere.triangles[tip].begin(), sphere.triangles[tip].end(), [&](std::uint32_t v) {
+                   return std::find(first.begin(), first.end(), v) != first.end();
+               }) != 1)
+            ++tip;
+        IndexedMesh m = sphere;
+        m.triangles.erase(m.triangles.begin() + std::ptrdiff_t(tip));
+        m.triangles.erase(m.triangles.begin());
+        const MeshTopology t = nmesh::mesh_topology(m);
+        CHECK_FALSE(t.closed);
+        CHECK_FALSE(t.manifold);  // the shared vertex keeps two fans
+        CHECK(t.genus == -1);
+        CHECK(t.boundary_edges == 6);
+        CHECK(t.boundary_loops == 1);  // one rim, through the shared vertex twice
+    }
+}
+
+namespace {
+
+// The most fans at any vertex, by brute force: the triangles round each vertex, linked when they
+// share an edge at it.
+std::size_t most_fans(const IndexedMesh& m) {
+    std::size_t most = 0;
+    for (std::uint32_t v = 0; v < m.positions.size(); ++v) {
+        std::vector<Triangle> round;
+        for (const Triangle& t : m.triangles)
+            if (std::find(t.begin(), t.end(), v) != t.end()) round.push_back(t);
+        std::vector<std::size_t> fan(round.size());
+        std::iota(fan.begin(), fan.end(), 0);
+        for (bool changed = true; changed;) {
+            changed = false;
+            for (std::size_t i = 0; i < round.size(); ++i)
+                for (std::size_t j = 0; j < round.size(); ++j) {
+                    std::size_t shared = 0;
+                    for (std::uint32_t a : round[i])
+                        shared += std::find(round[j].begin(), round[j].end(), a) != round[j].end();
+                    if (i != j && shared == 2 && fan[j] > fan[i]) {
+                        fan[j] = fan[i];
+                        changed = true;
+                    }
+                }
+        }
+        std::sort(fan.begin(), fan.end());
+        most = std::max<std::size_t>(most, std::size_t(std::unique(fan.begin(), fan.end()) - fan.begin()));
+    }
+    return most;
+}
+
+// The rims of a part of a consistently oriented closed surface, walked: a boundary edge u -> w is
+// one whose reverse no triangle runs; from w the walk takes w's only such edge. Returns the
+// loops, and the boundary edges in `edges`; 0 loops and 0 edges if a vertex has two.
+std::size_t walked_loops(const IndexedMesh& m, std::size_t& edges) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+    for (const Triangle& t : m.triangles)
+        for (int k = 0; k < 3; ++k) ++directed[{t[std::size_t(k)], t[std::size_t((k + 1) % 3)]}];
+    std::map<std::uint32_t, std::uint32_t> next;
+    for (const auto& [e, count] : directed)
+        if (!directed.count({e.second, e.first})) {
+            if (next.count(e.first)) return edges = 0;
+            next[e.first] = e.second;
+        }
+    edges = next.size();
+    std::size_t loops = 0;
+    std::map<std::uint32_t, bool> seen;
+    for (const auto& [start, unused] : next) {
+        if (seen[start]) continue;
+        ++loops;
+        for (std::uint32_t v = start; !seen[v]; v = next.at(v)) seen[v] = true;
+    }
+    return loops;
+}
+
+}  // namespace
+
+TEST_CASE("an icosphere with faces removed at random: genus 0, and the rims a walk finds") {
+    // Any part of a sphere is a sphere with holes, or several; where the removed faces leave a
+    // vertex with two fans the mesh is no surface. Both happen here, scattered faces or patches.
+    const IndexedMesh sphere = icosphere(2);  // 320 faces
+    std::mt19937 rng(11);
+    int surfaces = 0, bow_ties = 0;
+    for (int trial = 0; trial < 120; ++trial) {
+        CAPTURE(trial);
+        IndexedMesh m = sphere;
+        std::shuffle(m.triangles.begin(), m.triangles.end(), rng);
+        const std::size_t remove = 1 + std::size_t(trial) % 30 * std::size_t(trial % 2 ? 1 : 5);
+        if (trial % 2) {
+            m.triangles.resize(m.triangles.size() - remove);  // scattered
+        } else {
+            // A patch grown from one face through shared edges.
+            std::vector<char> gone(m.triangles.size(), 0);
+            gone[0] = 1;
+            for (std::size_t count = 1; count < remove;) {
+                const std::size_t f = std::uniform_int_distribution<std::size_t>(0, m.triangles.size() - 1)(rng);
+                if (gone[f]) continue;
+                bool touches = false;
+                for (std::size_t g = 0; g < m.triangles.size() && !touches; ++g) {
+                    if (!gone[g]) continue;
+                    std::size_t shared = 0;
+                    for (std::uint32_t a : m.triangles[f])
+                        shared += std::find(m.triangles[g].begin(), m.triangles[g].end(), a) != m.triangles[g].end();
+                    touches = shared == 2;
+                }
+                if (touches) {
+                    gone[f] = 1;
+                    ++count;
+                }
+            }
+            std::vector<Triangle> kept;
+            for (std::size_t f = 0; f < m.triangles.size(); ++f)
+                if (!gone[f]) kept.push_back(m.triangles[f]);
+            m.triangles = kept;
+        }
+        const MeshTopology t = nmesh::mesh_topology(m);
+        const bool surface = most_fans(m) == 1;
+        CHECK(t.manifold == surface);
+        CHECK_FALSE(t.closed);
+        std::size_t edges = 0;
+        const std::size_t loops = walked_loops(m, edges);
+        if (surface) {
+            ++surfaces;
+            CHECK(t.genus == 0);
+            CHECK(t.boundary_edges == edges);
+            CHECK(t.boundary_loops == loops);
+            CHECK(t.euler == 2 * (long long)t.components - (long long)t.boundary_loops);
+        } else {
+            ++bow_ties;
+            CHECK(t.genus == -1);
+        }
+    }
+    CHECK(surfaces >= 20);
+    CHECK(bow_ties >= 20);
+}
+
+TEST_CASE("mesh_topology is evaluate's topology, and checks the indices") {
+    IndexedMesh m = torus_with_hole();
+    const QualityReport r = quick_evaluate(m);
+    const MeshTopology t = nmesh::mesh_topology(m);
+    CHECK(t.closed == r.closed);
+    CHECK(t.manifold == r.manifold);
+    CHECK(t.euler == r.euler);
+    CHECK(t.genus == r.genus);
+    CHECK(t.components == r.components);
+    CHECK(t.isolated_vertices == r.isolated_vertices);
+    CHECK(t.boundary_loops == r.boundary_loops);
+    CHECK(t.boundary_edges == r.boundary_edges);
+    CHECK(t.boundary_length == r.boundary_length);
+    // No cloud needed, and coordinates matter only to the boundary's length.
+    m.positions[20].x = std::numeric_limits<float>::quiet_NaN();
+    const MeshTopology nan = nmesh::mesh_topology(m);
+    CHECK(nan.genus == 1);
+    CHECK(nan.boundary_length == t.boundary_length);  // vertex 20 is not on the rim
+    m.triangles[3][1] = std::uint32_t(m.positions.size());
+    CHECK_THROWS_AS(nmesh::mesh_topology(m), nmesh::InputError);
+    CHECK(nmesh::mesh_topology(IndexedMesh{}).components == 0);
 }
 
 TEST_CASE("self-intersections") {
@@ -665,7 +1071,7 @@ TEST_CASE("self-intersections") {
 
 TEST_CASE("write_json writes every key once, with the report's values") {
     IndexedMesh m = tetrahedron();
-    m.triangles.pop_back();  // open, so genus is null
+    m.triangles.pop_back();  // open: a disc with one boundary loop
     const QualityReport r = quick_evaluate(m, {{0, 0, 0}, {1, 1, 1}, {3, 0, 0}});
     std::ostringstream out;
     nmesh::write_json(out, r);
@@ -696,7 +1102,12 @@ TEST_CASE("write_json writes every key once, with the report's values") {
                                                       {"faces", 3.0},
                                                       {"bbox_diagonal", r.bbox_diagonal},
                                                       {"degenerate_triangles", 0.0},
-                                                      {"isolated_vertices", 0.0}};
+                                                      {"isolated_vertices", 0.0},
+                                                      {"genus", 0.0},
+                                                      {"boundary_loops", 1.0},
+                                                      {"boundary_edges", 3.0},
+                                                      {"boundary_length", r.boundary_length},
+                                                      {"boundary_length_rel", r.boundary_length_rel}};
     for (const auto& [key, value] : numbers) {
         CAPTURE(key);
         const std::string text = json_value(json, key);
@@ -705,14 +1116,24 @@ TEST_CASE("write_json writes every key once, with the report's values") {
     }
     CHECK(json_value(json, "closed") == "false");
     CHECK(json_value(json, "manifold") == "true");
-    CHECK(json_value(json, "genus") == "null");
     CHECK(r.p2s_max > 0.0);
+    CHECK(r.boundary_length == doctest::Approx(3 * 2 * std::sqrt(2.0)));
+    CHECK(r.boundary_length_rel > 0.0);
+
+    // No genus when the mesh is not manifold: null.
+    IndexedMesh flipped = tetrahedron();
+    std::swap(flipped.triangles[0][1], flipped.triangles[0][2]);
+    std::ostringstream flipped_json;
+    nmesh::write_json(flipped_json, quick_evaluate(flipped));
+    CHECK(json_value(flipped_json.str(), "genus") == "null");
+    CHECK(json_value(flipped_json.str(), "boundary_loops") == "0");
 
     std::ostringstream out_text;
     nmesh::write_text(out_text, r);
     const std::string text = out_text.str();
     CHECK(text.find("genus:") != std::string::npos);
-    CHECK(std::count(text.begin(), text.end(), '\n') == 30);
+    CHECK(text.find("boundary_loops:       1\n") != std::string::npos);
+    CHECK(std::count(text.begin(), text.end(), '\n') == 34);
 }
 
 TEST_CASE("orientation: the signed volume and the faces that point inward") {
@@ -812,6 +1233,7 @@ TEST_CASE("a learnt bunny opened round three vertices, against its own vertices"
     }
     REQUIRE(removed.size() == 3);
     float ring = 0.0f;  // the largest distance from a removed vertex to its neighbours
+    const std::size_t faces_before = mesh.triangles.size();
     mesh.triangles.erase(
         std::remove_if(mesh.triangles.begin(), mesh.triangles.end(),
                        [&](const Triangle& t) {
@@ -839,9 +1261,13 @@ TEST_CASE("a learnt bunny opened round three vertices, against its own vertices"
     CHECK(r.p2s_mean <= r.p2s_max * 3.0 / double(points.size()));
     CHECK_FALSE(r.closed);
     CHECK(r.manifold);
-    CHECK(r.genus == -1);
+    CHECK(r.genus == 0);
     CHECK(r.components == 1);
     CHECK(r.euler == 2 - 3);
+    CHECK(r.boundary_loops == 3);
+    CHECK(r.boundary_edges == faces_before - mesh.triangles.size());  // a removed fan's rim: one edge per face
+    CHECK(r.boundary_length > 0.0);
+    CHECK(r.boundary_length_rel == doctest::Approx(r.boundary_length / r.bbox_diagonal));
     // The mesh's vertices are the cloud: the DM is the mean distance from a vertex to the
     // centroid of its nearest triangle, a fraction of the edge length.
     CHECK(r.dm_x_t > 0.0);

@@ -226,6 +226,14 @@ TEST_CASE("an ASCII PLY shaped like the Stanford meshes (extra properties, faces
     CHECK(info.elements[1].properties == std::vector<std::string>{"list uchar int vertex_indices"});
     CHECK(info.points == kBunnyPoints);
     CHECK(info.faces == faces);
+    // The strip's triangles meet only at corners: a chain of bow-ties, every edge on the boundary.
+    REQUIRE(info.topology);
+    CHECK(info.topology_error.empty());
+    CHECK_FALSE(info.topology->manifold);
+    CHECK(info.topology->genus == -1);
+    CHECK(info.topology->components == 1);
+    CHECK(info.topology->boundary_edges == 3 * faces);
+    CHECK(info.topology->isolated_vertices == kBunnyPoints - (2 * faces + 1));
 }
 
 TEST_CASE("inspect_file summarises bunny.ply") {
@@ -238,9 +246,45 @@ TEST_CASE("inspect_file summarises bunny.ply") {
     CHECK(info.points == kBunnyPoints);
     CHECK(info.non_finite == 0);
     CHECK(info.faces == 0);
+    CHECK_FALSE(info.topology);
+    CHECK(info.topology_error.empty());
     const nmesh::BoundingBox box = nmesh::bounding_box(bunny_points());
     CHECK(same_bits(info.bounds.min, box.min));
     CHECK(same_bits(info.bounds.max, box.max));
+}
+
+TEST_CASE("inspect_file: the topology of the faces, or why there is none") {
+    TempDir dir;
+    // A unit cube without its top, as five quads: a box open at the top (a disc).
+    const std::string box =
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+        "f 1 4 3 2\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+    const nmesh::FileInfo open_box = nmesh::inspect_file(dir.file("box.obj", box));
+    CHECK(open_box.faces == 5);
+    REQUIRE(open_box.topology);
+    CHECK(open_box.topology->manifold);
+    CHECK_FALSE(open_box.topology->closed);
+    CHECK(open_box.topology->euler == 1);  // 8 - 12 + 5, the quads' diagonals left out
+    CHECK(open_box.topology->genus == 0);
+    CHECK(open_box.topology->boundary_loops == 1);
+    CHECK(open_box.topology->boundary_edges == 4);
+    CHECK(open_box.topology->boundary_length == 4.0);
+    const nmesh::FileInfo closed_box = nmesh::inspect_file(dir.file("closed.obj", box + "f 5 6 7 8\n"));
+    REQUIRE(closed_box.topology);
+    CHECK(closed_box.topology->closed);
+    CHECK(closed_box.topology->euler == 2);
+    CHECK(closed_box.topology->boundary_loops == 0);
+
+    // A face that refers to a vertex not defined: the rest is summarised, the topology is not.
+    const std::string bad = dir.file("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");
+    const nmesh::FileInfo info = nmesh::inspect_file(bad);
+    CHECK(info.points == 3);
+    CHECK(info.faces == 1);
+    CHECK_FALSE(info.topology);
+    CHECK(info.topology_error.find("out of range") != std::string::npos);
+    CHECK_THROWS_AS(nmesh::read_mesh(bad), nmesh::IoError);
+    // Errors in the points are still errors.
+    CHECK_THROWS_AS(nmesh::inspect_file(dir.file("word.obj", "v 0 0 zero\nf 1 1 1\n")), nmesh::IoError);
 }
 
 // ---------------------------------------------------------------------------------------------

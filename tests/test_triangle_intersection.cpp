@@ -23,6 +23,7 @@
 #include "nmesh/geometry/triangle_intersection.h"
 #include "nmesh/indexed_mesh.h"
 #include "nmesh/vec3.h"
+#include "mesh_fixtures.h"
 
 using nmesh::faces_intersect;
 using nmesh::IndexedMesh;
@@ -30,6 +31,7 @@ using nmesh::segment_intersects_triangle;
 using nmesh::triangle_degenerate;
 using nmesh::triangles_intersect_exact;
 using nmesh::Vec3;
+using nmesh::test::icosphere;
 
 namespace {
 
@@ -287,40 +289,6 @@ IndexedMesh subdivided_octahedron(int n) {
                         if (i + j + 1 < n) add_face(at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
                     }
             }
-    return m;
-}
-
-// An icosahedron subdivided `levels` times, its vertices projected on the unit sphere (floats).
-IndexedMesh icosphere(int levels) {
-    const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
-    IndexedMesh m;
-    m.positions = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
-                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
-    m.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                   {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                   {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-    for (Vec3& p : m.positions) p = nmesh::normalized(p);
-    for (int level = 0; level < levels; ++level) {
-        std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> middle;
-        const auto mid = [&](std::uint32_t a, std::uint32_t b) {
-            const auto key = std::minmax(a, b);
-            const auto it = middle.find(key);
-            if (it != middle.end()) return it->second;
-            const std::uint32_t v = std::uint32_t(m.positions.size());
-            m.positions.push_back(nmesh::normalized((m.positions[a] + m.positions[b]) * 0.5f));
-            middle.emplace(key, v);
-            return v;
-        };
-        std::vector<Face> next;
-        for (const Face& f : m.triangles) {
-            const std::uint32_t ab = mid(f[0], f[1]), bc = mid(f[1], f[2]), ca = mid(f[2], f[0]);
-            next.push_back({f[0], ab, ca});
-            next.push_back({f[1], bc, ab});
-            next.push_back({f[2], ca, bc});
-            next.push_back({ab, bc, ca});
-        }
-        m.triangles = next;
-    }
     return m;
 }
 

@@ -77,7 +77,7 @@ constexpr const char* kEvalUsage =
     "Measures MESH against the cloud POINTS: the paper's DM(X,T) (eq. 10-11), point-to-surface and\n"
     "surface-to-point distances, the Hausdorff distance (absolute and relative to the cloud's\n"
     "bounding-box diagonal), topology (closed, manifold, Euler characteristic, genus, components,\n"
-    "self-intersections) and triangle quality.\n"
+    "boundary loops, edges and length, self-intersections) and triangle quality.\n"
     "\n"
     "options:\n"
     "  --json                 print JSON instead of text\n";
@@ -85,7 +85,8 @@ constexpr const char* kEvalUsage =
 constexpr const char* kInfoUsage =
     "usage: nmesh info FILE\n"
     "\n"
-    "Prints the format, the element counts and the bounding box of a point or mesh file.\n";
+    "Prints the format, the element counts and the bounding box of a point or mesh file; for a mesh\n"
+    "also its topology: components, closed, manifold, boundary loops, Euler characteristic, genus.\n";
 
 std::atomic<bool> g_interrupted{false};
 
@@ -283,6 +284,23 @@ int run_eval(int argc, char** argv) {
     return 0;
 }
 
+// The topology lines of `nmesh info`.
+void print_topology(const MeshTopology& t) {
+    const auto yes_no = [](bool b) { return b ? "yes" : "no"; };
+    std::printf("components: %zu\nclosed: %s\nmanifold: %s\n", t.components, yes_no(t.closed), yes_no(t.manifold));
+    if (t.boundary_edges == 0)
+        std::printf("boundary loops: 0\n");
+    else
+        std::printf("boundary loops: %zu (%zu edges, length %g)\n", t.boundary_loops, t.boundary_edges,
+                    t.boundary_length);
+    if (t.isolated_vertices) std::printf("vertices in no face: %zu\n", t.isolated_vertices);
+    std::printf("euler characteristic: %lld\n", t.euler);
+    if (t.genus >= 0)
+        std::printf("genus: %d\n", t.genus);
+    else
+        std::printf("genus: - (not a manifold)\n");
+}
+
 int run_info(int argc, char** argv) {
     if (wants_help(argc, argv)) {
         std::fputs(kInfoUsage, stdout);
@@ -306,6 +324,8 @@ int run_info(int argc, char** argv) {
         std::printf("bounding box: [%g, %g, %g] to [%g, %g, %g]\ndiagonal: %g\n", info.bounds.min.x, info.bounds.min.y,
                     info.bounds.min.z, info.bounds.max.x, info.bounds.max.y, info.bounds.max.z, info.bounds.diagonal());
     }
+    if (!info.topology_error.empty()) std::printf("topology: not computed: %s\n", info.topology_error.c_str());
+    if (info.topology) print_topology(*info.topology);
     return 0;
 }
 

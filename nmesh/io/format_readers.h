@@ -14,4 +14,8 @@ void read_xyz(InputFile& in, bool pts, FileGeometry& g);
 void read_obj(InputFile& in, ReadFaces faces, FileGeometry& g);
 void read_off(InputFile& in, ReadFaces faces, FileGeometry& g);
 
+// The polygons of `g` (read with ReadFaces::yes) as triangles, each fan-triangulated from its first
+// corner: (c0, c(i), c(i+1)). What read_mesh returns.
+std::vector<std::array<std::uint32_t, 3>> fan_triangles(const FileGeometry& g);
+
 }  // namespace nmesh::io_detail

@@ -21,6 +21,7 @@
 #endif
 
 #include "nmesh/error.h"
+#include "nmesh/io/format_readers.h"
 
 namespace nmesh {
 namespace {
@@ -345,16 +346,8 @@ IndexedMesh read_mesh(const std::string& path) {
             throw IoError(path + ": vertex " + std::to_string(i) + " has a non-finite coordinate");
     }
     IndexedMesh mesh;
+    mesh.triangles = io_detail::fan_triangles(g);
     mesh.positions = std::move(g.positions);
-    if (g.face_offsets.empty()) return mesh;
-    // Every polygon has >= 3 corners (read_geometry checks), so it gives corners - 2 triangles.
-    const std::size_t faces = g.face_offsets.size() - 1;
-    mesh.triangles.reserve(g.face_indices.size() - 2 * faces);
-    for (std::size_t f = 0; f < faces; ++f) {
-        const std::uint32_t* c = g.face_indices.data() + g.face_offsets[f];
-        const std::size_t corners = g.face_offsets[f + 1] - g.face_offsets[f];
-        for (std::size_t i = 1; i + 1 < corners; ++i) mesh.triangles.push_back({c[0], c[i], c[i + 1]});
-    }
     return mesh;
 }
 

@@ -65,7 +65,23 @@ FileGeometry read_geometry(const std::string& path, ReadFaces faces) {
     return g;
 }
 
-namespace {}  // namespace
+namespace io_detail {
+
+std::vector<std::array<std::uint32_t, 3>> fan_triangles(const FileGeometry& g) {
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+    if (g.face_offsets.empty()) return triangles;
+    // Every polygon has >= 3 corners (read_geometry checks), so it gives corners - 2 triangles.
+    const std::size_t faces = g.face_offsets.size() - 1;
+    triangles.reserve(g.face_indices.size() - 2 * faces);
+    for (std::size_t f = 0; f < faces; ++f) {
+        const std::uint32_t* c = g.face_indices.data() + g.face_offsets[f];
+        const std::size_t corners = g.face_offsets[f + 1] - g.face_offsets[f];
+        for (std::size_t i = 1; i + 1 < corners; ++i) triangles.push_back({c[0], c[i], c[i + 1]});
+    }
+    return triangles;
+}
+
+}  // namespace io_detail
 
 PointCloud read_points(const std::string& path, PointReadReport* report) {
     FileGeometry g = read_geometry(path, ReadFaces::no);
@@ -84,7 +100,16 @@ PointCloud read_points(const std::string& path, PointReadReport* report) {
 }
 
 FileInfo inspect_file(const std::string& path) {
-    FileGeometry g = read_geometry(path, ReadFaces::no);
+    FileGeometry g;
+    std::string face_error;
+    try {
+        g = read_geometry(path, ReadFaces::yes);
+    } catch (const IoError& e) {
+        // Faces that make no mesh, or any other error: read again without the faces, which
+        // throws every error read_points would and summarises the rest.
+        g = read_geometry(path, ReadFaces::no);
+        face_error = e.what();
+    }
     FileInfo info;
     info.format = g.format;
     info.encoding = g.encoding;
@@ -99,6 +124,14 @@ FileInfo inspect_file(const std::string& path) {
         }
         ++info.points;
         info.bounds.extend(p);
+    }
+    if (!face_error.empty()) {
+        if (g.face_count > 0) info.topology_error = face_error;
+    } else if (!g.face_offsets.empty()) {
+        IndexedMesh mesh;
+        mesh.triangles = fan_triangles(g);
+        mesh.positions = std::move(g.positions);
+        info.topology = mesh_topology(mesh);
     }
     return info;
 }

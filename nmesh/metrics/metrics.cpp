@@ -280,6 +280,7 @@ QualityReport evaluate(PointSpan points, const IndexedMesh& mesh, const EvalOpti
 
     // Topology.
     analyze_topology(mesh, r);
+    r.boundary_length_rel = rel(r.boundary_length);
     std::vector<char> degenerate(mesh.triangles.size());
     for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
         degenerate[f] = is_degenerate(mesh, mesh.triangles[f]);

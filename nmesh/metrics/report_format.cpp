@@ -48,6 +48,10 @@ void for_each_field(const QualityReport& r, F&& f) {
     f("genus", r.genus < 0 ? std::string("null") : integer(r.genus));
     f("components", integer((long long)r.components));
     f("isolated_vertices", integer((long long)r.isolated_vertices));
+    f("boundary_loops", integer((long long)r.boundary_loops));
+    f("boundary_edges", integer((long long)r.boundary_edges));
+    f("boundary_length", number(r.boundary_length));
+    f("boundary_length_rel", number(r.boundary_length_rel));
     f("degenerate_triangles", integer((long long)r.degenerate_triangles));
     f("self_intersections", integer((long long)r.self_intersections));
     f("signed_volume", number(r.signed_volume));

@@ -1,10 +1,16 @@
+// nmesh/metrics/topology.cpp — the topology of an indexed mesh: edges, fans, components, boundary
+// loops, Euler characteristic and genus.
 #include "nmesh/metrics/topology.h"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <limits>
 #include <numeric>
+#include <string>
 #include <vector>
+
+#include "nmesh/error.h"
 
 namespace nmesh::metrics_detail {
 namespace {
@@ -40,10 +46,33 @@ bool is_degenerate(const IndexedMesh& mesh, const std::array<std::uint32_t, 3>& 
     return n.squaredNorm() == 0.0;
 }
 
-// Fills the topology fields of the report.
 void analyze_topology(const IndexedMesh& mesh, QualityReport& r) {
-    const std::size_t nv = mesh.positions.size(), nf = mesh.triangles.size();
+    const MeshTopology t = mesh_topology(mesh);
+    r.closed = t.closed;
+    r.manifold = t.manifold;
+    r.euler = t.euler;
+    r.genus = t.genus;
+    r.components = t.components;
+    r.isolated_vertices = t.isolated_vertices;
+    r.boundary_loops = t.boundary_loops;
+    r.boundary_edges = t.boundary_edges;
+    r.boundary_length = t.boundary_length;
+}
 
+}  // namespace nmesh::metrics_detail
+
+namespace nmesh {
+
+MeshTopology mesh_topology(const IndexedMesh& mesh) {
+    using metrics_detail::has_repeated_vertex;
+    using metrics_detail::to_eigen;
+    using metrics_detail::UnionFind;
+    const std::size_t nv = mesh.positions.size(), nf = mesh.triangles.size();
+    for (std::size_t f = 0; f < nf; ++f)
+        for (std::uint32_t v : mesh.triangles[f])
+            if (v >= nv)
+                throw InputError("topology: triangle " + std::to_string(f) + " refers to vertex " + std::to_string(v) +
+                                 " of " + std::to_string(nv));
     // Each directed edge of each triangle, grouped by undirected edge.
     struct HalfEdge {
         std::uint64_t key;  // (smaller vertex << 32) | larger vertex
@@ -130,18 +159,47 @@ void analyze_topology(const IndexedMesh& mesh, QualityReport& r) {
             --chi[vertices.find(std::uint32_t(half_edges[i].key >> 32))];
     for (const auto& t : mesh.triangles) ++chi[vertices.find(t[0])];
 
+    // Boundary loops. A boundary edge ties the fan at its start to the fan at its end (the fans
+    // being the groups of linked corners, now complete): the loops are the groups they tie
+    // together. Tying them only now keeps them out of the fan count above.
+    std::size_t boundary_edges = 0;
+    double boundary_length = 0.0;
+    std::vector<std::uint32_t> loop_corners;  // the starting corner of each boundary edge
+    for (std::size_t i = 0; i < half_edges.size(); ++i) {
+        const bool alone = (i == 0 || half_edges[i].key != half_edges[i - 1].key) &&
+                           (i + 1 == half_edges.size() || half_edges[i].key != half_edges[i + 1].key);
+        if (!alone) continue;
+        const HalfEdge& h = half_edges[i];
+        const std::uint32_t start = 3 * h.face + h.corner, end = 3 * h.face + (h.corner + 1) % 3;
+        corners.unite(start, end);
+        loop_corners.push_back(start);
+        ++boundary_edges;
+        const Vec3 &a = mesh.positions[h.key >> 32], &b = mesh.positions[std::uint32_t(h.key)];
+        boundary_length += (to_eigen(a) - to_eigen(b)).norm();
+    }
+    for (std::uint32_t& c : loop_corners) c = corners.find(c);
+    std::sort(loop_corners.begin(), loop_corners.end());
+    loop_corners.erase(std::unique(loop_corners.begin(), loop_corners.end()), loop_corners.end());
+    std::vector<std::uint32_t> loops(nv, 0);  // indexed by component root
+    for (const std::uint32_t c : loop_corners) ++loops[vertices.find(mesh.triangles[c / 3][c % 3])];
+
+    MeshTopology r;
     r.closed = closed;
     r.manifold = manifold;
     r.euler = (long long)referenced - (long long)edges + (long long)nf;
     r.components = components;
     r.isolated_vertices = nv - referenced;
-    r.genus = -1;
-    if (closed && manifold) {
+    r.boundary_loops = loop_corners.size();
+    r.boundary_edges = boundary_edges;
+    r.boundary_length = boundary_length;
+    // On an oriented manifold 2 - chi - b is even and not negative in every component.
+    if (manifold) {
         long long genus = 0;
         for (std::uint32_t v = 0; v < nv; ++v)
-            if (used[v] && vertices.find(v) == v) genus += (2 - chi[v]) / 2;
+            if (used[v] && vertices.find(v) == v) genus += (2 - chi[v] - loops[v]) / 2;
         r.genus = int(genus);
     }
+    return r;
 }
 
-}  // namespace nmesh::metrics_detail
+}  // namespace nmesh

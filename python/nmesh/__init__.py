@@ -291,7 +291,8 @@ def evaluate(points: npt.ArrayLike, vertices: npt.ArrayLike, faces: npt.ArrayLik
     """The metrics of `nmesh eval POINTS MESH --json` as a dict: DM(X,T), point-to-surface and
     surface-to-cloud distances, Hausdorff (each also relative to the cloud's bounding-box
     diagonal, the *_rel keys), topology (closed, manifold, euler, genus, components,
-    self_intersections...) and triangle quality. Deterministic (a fixed sampling seed).
+    boundary_loops, self_intersections...) and triangle quality. Deterministic (a fixed sampling
+    seed).
 
     Raises nmesh.InputError for no points, no faces, or a NaN or infinite coordinate."""
     p = _as_points(points)

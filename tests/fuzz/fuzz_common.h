@@ -136,6 +136,14 @@ inline Reading read_everything(const std::string& path) {
         NMESH_FUZZ_REQUIRE(mesh.positions.size() == cloud.size());
         for (std::size_t i = 0; i < cloud.size(); ++i)
             NMESH_FUZZ_REQUIRE(same_bits(mesh.positions[i], cloud.points[i]));
+        // inspect_file gives the topology of the same triangles.
+        NMESH_FUZZ_REQUIRE(info_ok && info.topology_error.empty());
+        NMESH_FUZZ_REQUIRE(info.topology.has_value() == !mesh.triangles.empty());
+        if (info.topology) {
+            const MeshTopology t = mesh_topology(mesh);
+            NMESH_FUZZ_REQUIRE(t.euler == info.topology->euler && t.genus == info.topology->genus);
+            NMESH_FUZZ_REQUIRE(t.boundary_loops == info.topology->boundary_loops);
+        }
     }
     return r;
 }
