@@ -9,6 +9,15 @@
 
 namespace nmesh {
 
+// What topology the learning may give the surface (Parameters::topology).
+enum class Topology {
+    sphere,  // the paper's algorithm: the tetrahedron's genus 0, bit for bit as it always was
+    closed,  // handles learnt from the data (nmesh/learn/handles.h); a closed surface of that genus
+};
+// "sphere" / "closed", and back; parse_topology throws ParameterError naming the choices.
+const char* topology_name(Topology t);
+Topology parse_topology(const char* name);
+
 struct Parameters {
     std::uint32_t target_vertices = 10000;  // step 9: stop at this many vertices (>= 4, and at
                                             // most 357,913,927, the mesh's limit less a margin)
@@ -24,6 +33,8 @@ struct Parameters {
     // flat cloud, whose closed mesh must fold flat. false, with finish false, gives the paper's
     // plain algorithm, bit for bit.
     bool fold_guard = true;
+    // Beyond the paper: whether the learning opens handles where the data has through-holes.
+    Topology topology = Topology::sphere;
     std::uint64_t seed = 1;  // the same seed and input give a bit-identical mesh
     // Iterations of steps 1-6 (no splits or collapses) run after the target size is reached, so
     // the last vertices settle onto the surface; in units of the final vertex count n

@@ -19,15 +19,22 @@ struct Statistics {
     std::uint64_t swaps_illegal = 0;      //   the worst edge could not be flipped
     std::uint64_t moves_shortened = 0;    // step 3 moves shortened: they would fold the winner's fan
     std::uint64_t folds_undone = 0;       // folded winners moved towards their ring's centroid instead
-    std::uint64_t indexed_points = 0;     // points in the nearest-point index (0 when none was built)
-    std::uint64_t index_bytes = 0;        //   its memory (PointGrid::memory_bytes)
-    double seconds = 0.0;                 // learning time, wall clock (normalisation included)
-    double seconds_finish = 0.0;          // the finishing stage (Parameters::finish), wall clock
-    bool finished = false;                // the finishing stage ran and its mesh was returned
+    // Topology learning (Parameters::topology closed, nmesh/learn/handles.h): searches made,
+    // cap-like unsupported patches found over them, handles made, faces cut out for them.
+    std::uint64_t topology_checks = 0;
+    std::uint64_t membrane_patches = 0;
+    std::uint64_t handles = 0;
+    std::uint64_t membrane_faces_removed = 0;
+    std::uint64_t indexed_points = 0;  // points in the nearest-point index (0 when none was built)
+    std::uint64_t index_bytes = 0;     //   its memory (PointGrid::memory_bytes)
+    double seconds = 0.0;              // learning time, wall clock (normalisation included)
+    double seconds_finish = 0.0;       // the finishing stage (Parameters::finish), wall clock
+    bool finished = false;             // the finishing stage ran and its mesh was returned
     // The output checked (reconstruct() does it for every mesh it returns): the triangles were
     // reversed to face outward (negative signed volume), crossing triangle pairs by the exact
     // test, faces pointing inward. A valid surface has no crossing pair and no inward face.
     bool reoriented = false;
+    int genus = 0;  // of the output (closed): (2 - V + E - F) / 2
     std::uint64_t crossing_pairs = 0;
     std::uint64_t inward_faces = 0;
     // Time split by phase, filled only when Callbacks::profile is set (timing costs time).

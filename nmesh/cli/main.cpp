@@ -55,6 +55,8 @@ constexpr const char* kReconstructUsage =
     "  --cvs N                a vertex split every N iterations (default 100)\n"
     "  --cec N                inactive vertices removed every N * n iterations (default 20)\n"
     "  --no-edge-swap         basic Neural Meshes (no edge swap after collapses)\n"
+    "  --topology MODE        sphere: genus 0, the paper's algorithm; closed: handles learnt where the\n"
+    "                         cloud has through-holes, a closed surface of that genus (default sphere)\n"
     "  --no-fold-guard        let step 3 fold the winner's triangles, as the paper's algorithm does\n"
     "  --no-finish            no finishing stage: the learnt mesh as it is (with --no-fold-guard, exactly as\n"
     "                         the paper's algorithm leaves it)\n"
@@ -155,7 +157,7 @@ int run_reconstruct(int argc, char** argv) {
         argc, argv, 2,
         {"--no-edge-swap", "--no-fold-guard", "--no-finish", "--quiet", "--ascii", "--save-on-interrupt"},
         {"-o", "--output", "--vertices", "--alpha-w", "--alpha-n", "--alpha", "--cvs", "--cec", "--seed", "--snapshots",
-         "--stats", "--settle", "--finish-rounds", "--fit-rounds", "--index-points"});
+         "--stats", "--settle", "--finish-rounds", "--fit-rounds", "--index-points", "--topology"});
     if (args.positional().size() != 1) throw UsageError("reconstruct takes one INPUT file");
     const std::string input = args.positional()[0];
     const std::string output = args.has("-o") ? args.text("-o") : args.text("--output");
@@ -198,6 +200,7 @@ int run_reconstruct(int argc, char** argv) {
     p.fit_rounds = bounded_count("--fit-rounds", p.fit_rounds);
     p.index_points_per_vertex = bounded_count("--index-points", p.index_points_per_vertex);
     try {
+        if (args.has("--topology")) p.topology = parse_topology(args.text("--topology").c_str());
         p.validate();
     } catch (const ParameterError& e) {
         throw UsageError(e.what());

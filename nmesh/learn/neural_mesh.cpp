@@ -9,6 +9,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "nmesh/learn/handles.h"
 #include "nmesh/spatial/cloud_sample.h"
 #include "nmesh/util/float4.h"
 #include "nmesh/util/prefetch.h"
@@ -60,9 +61,10 @@ NeuralMesh::NeuralMesh(PointSpan points, const BoundingBox& bounds, const Parame
         grid_.insert(v, mesh_.position(Vertex(v)));
         activity_.add(v, 0.0);
     }
-    if (params_.edge_swap) {
+    if (params_.edge_swap || params_.topology == Topology::closed) {
         // Eq. (9) against the cloud, or against the stratified sample that stands for a cloud
-        // much denser than the mesh (Parameters::index_points_per_vertex).
+        // much denser than the mesh (Parameters::index_points_per_vertex); the handle search
+        // measures against it too.
         cloud_index_ = index_cloud(points_, transform_, bounds, params_);
         record_index(*cloud_index_, stats_);
     }
@@ -534,6 +536,26 @@ std::string NeuralMesh::check_consistency() const {
         return err.str();
     }
     return {};
+}
+
+// The handle search needs the face index, which the loop does without; it is built for the
+// search and dropped after it (the mesh is closed again either way).
+std::uint32_t NeuralMesh::learn_handles() {
+    if (!cloud_index_) return 0;
+    mesh_.build_faces();
+    const HandleSearch found = open_handles(mesh_, *cloud_index_);
+    mesh_.drop_faces();
+    for (std::uint32_t v : found.removed_vertices) {
+        grid_.remove(v);
+        activity_.remove(v);
+    }
+    for (std::uint32_t v : found.touched_vertices) rings_.refresh(mesh_, Vertex(v));
+    early_valid_ = false;  // the look-ahead's winner may be gone
+    ++stats_.topology_checks;
+    stats_.membrane_patches += found.patches;
+    stats_.handles += found.handles;
+    stats_.membrane_faces_removed += found.faces_removed;
+    return found.handles;
 }
 
 }  // namespace nmesh

@@ -58,6 +58,11 @@ public:
     void remove_inactive();
     // Section 4: the edge swap around vertex v.
     void swap_around(Vertex v);
+    // Beyond the paper (Parameters::topology closed): a handle for each pair of membranes that
+    // spans a through-hole of the cloud (nmesh/learn/handles.h). Returns the handles made. Deletes
+    // the vertices the cuts take (from the grid and the activity index too) and refreshes the
+    // rings that changed. O(n log n).
+    std::uint32_t learn_handles();
     // Caches the rings of vertices with at most n neighbours only (RingCache::set_limit); the
     // others are read from the half-edge mesh. The results are the same bits either way; for
     // tests of both paths. O(n).

@@ -163,8 +163,17 @@ void learn_to_target(NeuralMesh& engine, std::size_t cloud_size, const Parameter
     std::size_t next_snapshot = 0;
     std::uint32_t largest = engine.mesh().n_vertices();
     std::uint64_t largest_pass = 0;  // removal pass count when `largest` was reached
+    // Topology closed: the handle search each time the mesh grows by half, from kFirstHandleSearch
+    // vertices up to half the target, so that a handle made has the second half of the growth to
+    // learn its wall.
+    constexpr std::uint32_t kFirstHandleSearch = 512;
+    std::uint32_t next_handle_search = kFirstHandleSearch;
     while (engine.mesh().n_vertices() < params.target_vertices) {
         engine.iterate();
+        if (params.topology == Topology::closed && engine.mesh().n_vertices() >= next_handle_search) {
+            if (2 * std::uint64_t(engine.mesh().n_vertices()) <= params.target_vertices) engine.learn_handles();
+            next_handle_search += next_handle_search / 2;
+        }
         if (engine.mesh().n_vertices() > largest) {
             largest = engine.mesh().n_vertices();
             largest_pass = engine.stats().removal_passes;
@@ -233,6 +242,8 @@ bool finish_stage(const Mesh& learnt, std::unique_ptr<PointGrid> cloud_index, Po
 // Every closed output faces outward (its triangles reversed when the learning turned the whole
 // surface inside out), and its validity is measured: crossing pairs and inward faces.
 void check_output(Result& result) {
+    const long long v = (long long)result.mesh.positions.size(), f = (long long)result.mesh.triangles.size();
+    result.stats.genus = int((2 - v + f / 2) / 2);  // closed: E = 3F / 2
     result.stats.reoriented = metrics_detail::orient_outward(result.mesh);
     result.stats.crossing_pairs = count_self_intersections(result.mesh);
     result.stats.inward_faces = metrics_detail::inward_faces(result.mesh, TriangleBvh(result.mesh));

@@ -55,10 +55,10 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << "  \"parameters\": {\"target_vertices\": " << p.target_vertices << ", \"alpha_w\": " << p.alpha_w
       << ", \"alpha_n\": " << p.alpha_n << ", \"alpha\": " << p.alpha << ", \"cvs\": " << p.cvs
       << ", \"cec\": " << p.cec << ", \"edge_swap\": " << (p.edge_swap ? "true" : "false")
-      << ", \"fold_guard\": " << (p.fold_guard ? "true" : "false") << ", \"settle\": " << p.settle
-      << ", \"finish\": " << (p.finish ? "true" : "false") << ", \"finish_rounds\": " << p.finish_rounds
-      << ", \"fit_rounds\": " << p.fit_rounds << ", \"index_points_per_vertex\": " << p.index_points_per_vertex
-      << "},\n"
+      << ", \"fold_guard\": " << (p.fold_guard ? "true" : "false") << ", \"topology\": \"" << topology_name(p.topology)
+      << "\", \"settle\": " << p.settle << ", \"finish\": " << (p.finish ? "true" : "false")
+      << ", \"finish_rounds\": " << p.finish_rounds << ", \"fit_rounds\": " << p.fit_rounds
+      << ", \"index_points_per_vertex\": " << p.index_points_per_vertex << "},\n"
       << "  \"vertices\": " << r.mesh.positions.size() << ",\n"
       << "  \"faces\": " << r.mesh.triangles.size() << ",\n"
       << "  \"iterations\": " << s.iterations << ",\n"
@@ -72,10 +72,15 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << "  \"swaps_illegal\": " << s.swaps_illegal << ",\n"
       << "  \"moves_shortened\": " << s.moves_shortened << ",\n"
       << "  \"folds_undone\": " << s.folds_undone << ",\n"
+      << "  \"topology_checks\": " << s.topology_checks << ",\n"
+      << "  \"membrane_patches\": " << s.membrane_patches << ",\n"
+      << "  \"handles\": " << s.handles << ",\n"
+      << "  \"membrane_faces_removed\": " << s.membrane_faces_removed << ",\n"
       << "  \"indexed_points\": " << s.indexed_points << ",\n"
       << "  \"seconds\": " << s.seconds << ",\n"
       << "  \"seconds_finish\": " << s.seconds_finish << ",\n"
       << "  \"reoriented\": " << (s.reoriented ? "true" : "false") << ",\n"
+      << "  \"genus\": " << s.genus << ",\n"
       << "  \"crossing_pairs\": " << s.crossing_pairs << ",\n"
       << "  \"inward_faces\": " << s.inward_faces << ",\n"
       << "  \"cancelled\": " << (r.cancelled ? "true" : "false") << ",\n"
