@@ -7,6 +7,9 @@
 #   bench/run_validity_sweep.sh --ci     the reduced sweep CI runs (a few clouds, seeds and sizes,
 #                                        well under a minute); fails on any crossing pair or inward
 #                                        face of the finished meshes of the clouds it checks
+#   bench/run_validity_sweep.sh --topology closed
+#                                        the full sweep in topology closed mode (handles learnt),
+#                                        on seeds 1-10: bench/results/validity-closed.{csv,md}
 # The single-view scan (bunny_scan090) is exempt from the check: a closed surface cannot represent
 # an open sheet; it must only end, in bounded time, with the warning.
 set -euo pipefail
@@ -15,6 +18,12 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
 cmake --build build -j 2 --target validity_sweep > /dev/null
 data=../shared/data
 mkdir -p bench/results
+topology=()
+name=validity
+if [ "${1:-}" = "--topology" ]; then
+  topology=(--topology "$2" --seeds 1-10)
+  name=validity-$2
+fi
 if [ "${1:-}" = "--ci" ]; then
   # Checked: the clouds and sizes whose finished meshes the full sweep found valid for all of seeds
   # 1-20 (bench/results/validity.md). Shown, not checked: the horse, which still has defects.
@@ -49,24 +58,24 @@ for c in bunny horse rocker_arm knot eight bunny_scan090; do [ -f "$data/$c.ply"
 [ ${#clouds[@]} -eq 0 ] && clouds=(examples/data/bunny.ply)
 # Two processes side by side (one per core): the clouds split between them.
 half=$(( (${#clouds[@]} + 1) / 2 ))
-./build/bench/validity_sweep "${clouds[@]:0:$half}" --csv build/validity-a.csv --md build/validity-a.md \
-  --exempt bunny_scan090 2> build/validity-a.log &
+./build/bench/validity_sweep "${clouds[@]:0:$half}" "${topology[@]}" --csv build/validity-a.csv \
+  --md build/validity-a.md --exempt bunny_scan090 2> build/validity-a.log &
 pid=$!
 if [ ${#clouds[@]} -gt "$half" ]; then
-  ./build/bench/validity_sweep "${clouds[@]:$half}" --csv build/validity-b.csv --md build/validity-b.md \
-    --exempt bunny_scan090 2> build/validity-b.log
+  ./build/bench/validity_sweep "${clouds[@]:$half}" "${topology[@]}" --csv build/validity-b.csv \
+    --md build/validity-b.md --exempt bunny_scan090 2> build/validity-b.log
 fi
 wait $pid
-cp build/validity-a.csv bench/results/validity.csv
-[ -f build/validity-b.csv ] && tail -n +2 build/validity-b.csv >> bench/results/validity.csv
+cp build/validity-a.csv "bench/results/$name.csv"
+[ -f build/validity-b.csv ] && tail -n +2 build/validity-b.csv >> "bench/results/$name.csv"
 {
-  echo "# Validity sweep"
+  echo "# Validity sweep${topology:+ (topology ${topology[1]})}"
   echo
-  echo "Command: \`bench/run_validity_sweep.sh\` (Release). $(date -u +%Y-%m-%d). Per run: bench/results/validity.csv."
+  echo "Command: \`bench/run_validity_sweep.sh${topology:+ --topology ${topology[1]}}\` (Release). $(date -u +%Y-%m-%d). Per run: bench/results/$name.csv."
   echo
   sed -n '/^| cloud/,$p' build/validity-a.md | grep '^|'
   [ -f build/validity-b.md ] && sed -n '/^| cloud/,$p' build/validity-b.md | tail -n +3 | grep '^|'
   echo
   grep -h "runs in" build/validity-a.md build/validity-b.md 2> /dev/null || true
-} > bench/results/validity.md
-cat bench/results/validity.md
+} > "bench/results/$name.md"
+cat "bench/results/$name.md"

@@ -4,7 +4,7 @@
 // row per run and a markdown summary per cloud, size and stage setting.
 //
 //   validity_sweep CLOUD... --csv OUT.csv --md OUT.md [--seeds 1-20] [--sizes 1000,3000,10000,30000]
-//                  [--finish both|on|off] [--check] [--exempt NAME,...]
+//                  [--finish both|on|off] [--topology sphere|closed] [--check] [--exempt NAME,...]
 //
 // A size is run on a cloud only when the cloud has at least 1.1 points per vertex (fewer cannot
 // carry it with the paper's parameters: the mesh stops growing). --check exits with status 1 if
@@ -62,6 +62,8 @@ std::vector<std::uint64_t> parse_range(const std::string& text) {
 
 std::string name_of(const std::string& path) { return std::filesystem::path(path).stem().string(); }
 
+nmesh::Topology g_topology = nmesh::Topology::sphere;  // --topology, for every run
+
 Run run_one(const std::string& name, const nmesh::PointCloud& cloud, std::uint32_t vertices, std::uint64_t seed,
             bool finish) {
     Run r;
@@ -73,6 +75,7 @@ Run run_one(const std::string& name, const nmesh::PointCloud& cloud, std::uint32
     p.target_vertices = vertices;
     p.seed = seed;
     p.finish = finish;
+    p.topology = g_topology;
     try {
         const nmesh::Result res = nmesh::reconstruct(cloud, p);
         nmesh::EvalOptions o;
@@ -104,11 +107,12 @@ int main(int argc, char** argv) {
     bool check = false;
     try {
         const nmesh::cli::Arguments args(argc, argv, 1, {"--check"},
-                                         {"--csv", "--md", "--seeds", "--sizes", "--finish", "--exempt"});
+                                         {"--csv", "--md", "--seeds", "--sizes", "--finish", "--exempt", "--topology"});
         clouds = args.positional();
         seeds = parse_range(args.text("--seeds", "1-20"));
         sizes = parse_range(args.text("--sizes", "1000,3000,10000,30000"));
         finish_mode = args.text("--finish", "both");
+        if (args.has("--topology")) g_topology = nmesh::parse_topology(args.text("--topology").c_str());
         csv = args.text("--csv");
         md = args.text("--md");
         check = args.has("--check");
@@ -173,7 +177,8 @@ int main(int argc, char** argv) {
         groups[key].push_back(&r);
     }
     std::ofstream out(md);
-    out << "# Validity sweep\n\nEach row: one cloud and size, with the finishing stage (`finished`) or without it "
+    out << "# Validity sweep (topology " << nmesh::topology_name(g_topology)
+        << ")\n\nEach row: one cloud and size, with the finishing stage (`finished`) or without it "
            "(`learnt`), over the seeds. Crossing pairs by the exact test; a face points inward when the point just "
            "off it along its normal has a nonzero winding number; Hausdorff distance in % of the cloud's "
            "bounding-box diagonal; the largest ratio of the finishing stage's time to the learning's.\n\n";

@@ -25,6 +25,23 @@ inline PointCloud sphere_cloud(std::size_t n, float radius = 1.0f, Vec3 center =
     return c;
 }
 
+// n points uniformly distributed on the torus of radii (big, small) round the z axis: a shape
+// with a through-hole of radius big - small.
+inline PointCloud torus_cloud(std::size_t n, float big = 1.0f, float small = 0.35f, std::uint64_t seed = 3) {
+    Random rng(seed);
+    PointCloud c;
+    c.points.reserve(n);
+    const double two_pi = 6.283185307179586;
+    while (c.points.size() < n) {
+        const double u = two_pi * rng.uniform(), v = two_pi * rng.uniform();
+        // Rejection by the area element (big + small cos v) makes the sample uniform in area.
+        if (rng.uniform() * (big + small) > big + small * std::cos(v)) continue;
+        const double r = big + small * std::cos(v);
+        c.points.push_back({float(r * std::cos(u)), float(r * std::sin(u)), float(small * std::sin(v))});
+    }
+    return c;
+}
+
 // Reads a binary little-endian PLY with exactly the float properties x, y, z (the format of the
 // bundled bunny), without the library's readers, so that tests of other parts do not depend on
 // them. Returns an empty vector when the file is missing or short.
