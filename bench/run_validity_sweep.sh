@@ -9,7 +9,8 @@
 #                                        face of the finished meshes of the clouds it checks
 #   bench/run_validity_sweep.sh --topology closed
 #                                        the full sweep in topology closed mode (handles learnt),
-#                                        on seeds 1-10: bench/results/validity-closed.{csv,md}
+#                                        on seeds 1-10 and sizes up to 30,000 with 5,000 added:
+#                                        bench/results/validity-closed.{csv,md}
 # The single-view scan (bunny_scan090) is exempt from the check: a closed surface cannot represent
 # an open sheet; it must only end, in bounded time, with the warning.
 set -euo pipefail
@@ -21,7 +22,7 @@ mkdir -p bench/results
 topology=()
 name=validity
 if [ "${1:-}" = "--topology" ]; then
-  topology=(--topology "$2" --seeds 1-10)
+  topology=(--topology "$2" --seeds 1-10 --sizes 1000,3000,5000,10000,30000)
   name=validity-$2
 fi
 if [ "${1:-}" = "--ci" ]; then

@@ -183,8 +183,9 @@ int main(int argc, char** argv) {
            "off it along its normal has a nonzero winding number; Hausdorff distance in % of the cloud's "
            "bounding-box diagonal; the largest ratio of the finishing stage's time to the learning's.\n\n";
     out << "| cloud | vertices | stage | runs | with crossings | most pairs | with inward faces | most inward | "
-           "negative volume | Hausdorff median | max | max / median | finish / learning (max) | errors |\n"
-        << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+           "negative volume | genus (runs) | Hausdorff median | max | max / median | finish / learning (max) | "
+           "errors |\n"
+        << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     bool failed = false;
     char buf[512];
     for (const auto& key : keys) {
@@ -192,6 +193,7 @@ int main(int argc, char** argv) {
         std::size_t crossing = 0, most = 0, inward = 0, negative = 0, errors = 0;
         double most_inward = 0.0, finish_ratio = 0.0;
         std::vector<double> h;
+        std::map<int, int> genera;  // genus -> runs
         for (const Run* r : g) {
             if (!r->error.empty()) {
                 ++errors;
@@ -202,17 +204,23 @@ int main(int argc, char** argv) {
             inward += r->inward_share > 0.0;
             most_inward = std::max(most_inward, r->inward_share);
             negative += r->volume < 0.0;
+            ++genera[r->genus];
             h.push_back(100.0 * r->hausdorff_rel);
             if (r->seconds_learning > 0.0)
                 finish_ratio = std::max(finish_ratio, r->seconds_finish / r->seconds_learning);
             if (defective(*r) && std::find(exempt.begin(), exempt.end(), r->cloud) == exempt.end()) failed = true;
         }
         const nmesh::bench::Summary s = h.empty() ? nmesh::bench::Summary{} : nmesh::bench::summarize(h);
-        std::snprintf(buf, sizeof buf,
-                      "| %s | %u | %s | %zu | %zu | %zu | %zu | %.2f%% | %zu | %.2f%% | %.2f%% | %.2f | %.2f | %zu |\n",
-                      std::get<0>(key).c_str(), std::get<1>(key), std::get<2>(key) ? "finished" : "learnt", g.size(),
-                      crossing, most, inward, 100.0 * most_inward, negative, s.median, s.max,
-                      s.median > 0.0 ? s.max / s.median : 0.0, finish_ratio, errors);
+        std::string genus_text;  // "0 (10)" or "1 (7), 0 (3)"
+        for (auto it = genera.rbegin(); it != genera.rend(); ++it)
+            genus_text +=
+                (genus_text.empty() ? "" : ", ") + std::to_string(it->first) + " (" + std::to_string(it->second) + ")";
+        std::snprintf(
+            buf, sizeof buf,
+            "| %s | %u | %s | %zu | %zu | %zu | %zu | %.2f%% | %zu | %s | %.2f%% | %.2f%% | %.2f | %.2f | %zu |\n",
+            std::get<0>(key).c_str(), std::get<1>(key), std::get<2>(key) ? "finished" : "learnt", g.size(), crossing,
+            most, inward, 100.0 * most_inward, negative, genus_text.c_str(), s.median, s.max,
+            s.median > 0.0 ? s.max / s.median : 0.0, finish_ratio, errors);
         out << buf;
     }
     std::snprintf(buf, sizeof buf, "\n%zu runs in %.0f s.\n", runs.size(), seconds);

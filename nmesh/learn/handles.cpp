@@ -113,6 +113,26 @@ void mark_neighbourhood(const Mesh& m, const std::vector<std::uint32_t>& vertice
     }
 }
 
+// Whether the cloud surrounds the line through `middle` along `axis` (unit): in each of
+// kDirections directions across it, a cloud point within `gap` of the ray within `reach`.
+// A bore or a ring's hole is walled all round; the gap between two legs or two strands of a knot
+// is open on two sides.
+bool walled_round(const PointGrid& cloud, const Vec3& middle, const Vec3& axis, float reach, float gap) {
+    constexpr int kDirections = 8;
+    const Vec3 helper = std::fabs(axis.x) < 0.9f ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+    const Vec3 e1 = normalized(cross(axis, helper)), e2 = cross(axis, e1);
+    const float gap2 = gap * gap;
+    for (int k = 0; k < kDirections; ++k) {
+        const float angle = 6.2831853f * float(k) / float(kDirections);
+        const Vec3 dir = e1 * std::cos(angle) + e2 * std::sin(angle);
+        bool hit = false;
+        for (float t = gap; t <= reach && !hit; t += gap)
+            hit = cloud.nearest_squared_distance(middle + dir * t) <= gap2;
+        if (!hit) return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 HandleSearch open_handles(Mesh& mesh, const PointGrid& cloud) {
@@ -201,6 +221,11 @@ HandleSearch open_handles(Mesh& mesh, const PointGrid& cloud) {
             empty = cloud.nearest_squared_distance(pr.centre * (1.0f - t) + ps.centre * t) > far2;
         }
         if (!empty) continue;
+        const float reach = 4.0f * std::max(pr.radius(), ps.radius()) + far;
+        // The axis from the normals: between two sheets pressed together the centres' offset is
+        // mostly sideways.
+        const Vec3 axis = normalized(ps.normal() - pr.normal());
+        if (!walled_round(cloud, (pr.centre + ps.centre) * 0.5f, axis, reach, 0.5f * far)) continue;
         in_pair.resize(mesh.face_capacity(), 0);  // a join before may have added face slots
         for (std::uint32_t f : pr.faces) in_pair[f] = 1;
         for (std::uint32_t f : ps.faces) in_pair[f] = 1;

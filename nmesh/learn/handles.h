@@ -17,7 +17,9 @@
 //     is not a cap);
 //   - two patches pair when each lies behind the other (their mean normals point away from each
 //     other, the segment between their centres passes through the inside), the segment meets
-//     no other face and no cloud point comes near its inner part;
+//     no other face, no cloud point comes near its inner part, and the cloud walls it round
+//     (points across its middle in every one of 8 directions, within 4 patch radii): a hole
+//     through the data, not the gap between two legs;
 //   - all or nothing per pair: if the cut or the join is refused, the mesh is left as it was.
 #pragma once
 

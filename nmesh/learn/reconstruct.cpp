@@ -171,7 +171,7 @@ void learn_to_target(NeuralMesh& engine, std::size_t cloud_size, const Parameter
     while (engine.mesh().n_vertices() < params.target_vertices) {
         engine.iterate();
         if (params.topology == Topology::closed && engine.mesh().n_vertices() >= next_handle_search) {
-            if (2 * std::uint64_t(engine.mesh().n_vertices()) <= params.target_vertices) engine.learn_handles();
+            if (4 * std::uint64_t(engine.mesh().n_vertices()) <= 3 * std::uint64_t(params.target_vertices)) engine.learn_handles();
             next_handle_search += next_handle_search / 2;
         }
         if (engine.mesh().n_vertices() > largest) {
