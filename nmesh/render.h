@@ -4,10 +4,15 @@
 //   - orthographic camera framing the mesh's bounding sphere (centred on its bounding box, through
 //     its farthest vertex), so every view of a mesh has the same scale and nothing is cut off;
 //   - z-buffer visibility: the nearest triangle at each sample whatever the triangle order (only
-//     between overlapping coplanar triangles does the first one win);
+//     between overlapping coplanar triangles facing the same way does the first one win; a back
+//     face loses to a front face it lies on or meets, as along a closed mesh's outline);
 //   - Lambert + ambient shading under one directional light from the camera's upper left, the
-//     light fixed to the camera; back faces are lit like front faces (the normal turned towards
-//     the viewer), so holes and flipped triangles show instead of vanishing;
+//     light fixed to the camera; back faces (whose counter-clockwise normal points away from the
+//     camera) are lit like front faces, the normal turned towards the viewer, but drawn in their
+//     own colour: the far side of an open surface, the inside seen through a hole and flipped
+//     triangles stand out instead of vanishing or passing for front faces. A closed,
+//     outward-facing mesh shows no back face from outside, so its image does not depend on the
+//     back colour;
 //   - smooth (interpolated per-vertex normals) or flat (one normal per triangle) shading, an
 //     optional wireframe, and optional per-vertex values shown through a colour ramp;
 //   - supersampling for anti-aliased edges.
@@ -68,8 +73,14 @@ struct RenderOptions {
     std::array<std::uint8_t, 3> background{255, 255, 255};
     // The surface's colour, before shading (a light grey-blue that reads well under the light).
     std::array<std::uint8_t, 3> color{190, 200, 220};
+    // The colour of back faces, before shading: a warm tan (E0B090) that tells the back of a sheet
+    // from the cool front at a glance, under the light and in shadow, and against a white
+    // background. With vertex_values it is not used: back faces keep the ramp's colour and are
+    // darkened to 60% of their shaded brightness.
+    std::array<std::uint8_t, 3> back_color{224, 176, 144};
     // Optional: one value per mesh position (e.g. its distance to the point cloud), interpolated
-    // across the triangles and shown through ramp_color() in place of `color`, still shaded.
+    // across the triangles and shown through ramp_color() in place of `color` and `back_color`,
+    // still shaded (back faces darkened, see back_color).
     // Values are mapped linearly from [value_min, value_max] to [0, 1] and clamped; a bound left
     // empty is the smallest / largest value over the vertices that triangles use. When the range
     // is a single value, values above it map to 1 and the others to 0.

@@ -1,7 +1,8 @@
 // Tests of the PNG encoder and the software renderer. The PNG files are decoded by a small
 // independent inflate (stored and fixed-Huffman blocks) written here, with every chunk CRC and
 // the zlib Adler-32 checked; the renders are checked against the camera's projection of known
-// meshes: coverage, visibility, lighting direction, views, wireframe and value colouring.
+// meshes: coverage, visibility, lighting direction, back faces, views, wireframe and value
+// colouring.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -317,6 +318,29 @@ IndexedMesh sphere(int n) {
     return m;
 }
 
+// An octahedron: equator corners (+-r, 0, 0), (0, +-r, 0) and poles (0, 0, +-R), R >= r, outward,
+// the faces of the far (-z) half listed first. From the front its outline is the square of
+// equator edges, where each front face meets a back face at the same depth.
+IndexedMesh octahedron(float r, float R) {
+    IndexedMesh m;
+    m.positions = {{r, 0, 0}, {0, r, 0}, {-r, 0, 0}, {0, -r, 0}, {0, 0, -R}, {0, 0, R}};
+    for (const std::uint32_t pole : {4u, 5u})
+        for (std::uint32_t k = 0; k < 4; ++k) m.triangles.push_back({k, (k + 1) % 4, pole});
+    orient_outward(m, {0, 0, 0});
+    return m;
+}
+
+// sphere(n) without its cap towards +z (the triangles whose centre has z > 0.7): an open surface
+// whose inside shows through the hole from the front.
+IndexedMesh open_sphere(int n) {
+    IndexedMesh m = sphere(n);
+    std::vector<std::array<std::uint32_t, 3>> kept;
+    for (const auto& t : m.triangles)
+        if ((m.positions[t[0]].z + m.positions[t[1]].z + m.positions[t[2]].z) / 3.0f <= 0.7f) kept.push_back(t);
+    m.triangles = kept;
+    return m;
+}
+
 IndexedMesh merged(const IndexedMesh& a, const IndexedMesh& b) {
     IndexedMesh m = a;
     const std::uint32_t offset = std::uint32_t(a.positions.size());
@@ -357,6 +381,16 @@ double distance_to_segment(double px, double py, const Vec3& a, const Vec3& b) {
     const double dx = b.x - a.x, dy = b.y - a.y;
     const double t = std::clamp(((px - a.x) * dx + (py - a.y) * dy) / (dx * dx + dy * dy), 0.0, 1.0);
     return std::hypot(px - (a.x + t * dx), py - (a.y + t * dy));
+}
+
+// Whether a pixel is `color` scaled by one factor (shaded), to within rounding; the factor goes
+// to `shade`.
+bool has_hue(const Rgb& pixel, const Rgb& color, double* shade = nullptr) {
+    const double k = double(pixel[0] + pixel[1] + pixel[2]) / double(color[0] + color[1] + color[2]);
+    if (shade) *shade = k;
+    for (int i = 0; i < 3; ++i)
+        if (std::fabs(pixel[i] - k * color[i]) > 2.0) return false;
+    return true;
 }
 
 void check_close(const Vec3& a, const Vec3& b) {
@@ -656,29 +690,134 @@ TEST_CASE("the z-buffer shows the nearer surface whatever the triangle order") {
     }
 }
 
-TEST_CASE("back faces are lit like front faces") {
+TEST_CASE("back faces are lit like front faces, in the back colour") {
+    const RenderOptions defaults;
+    CHECK(defaults.color == Rgb{0xBE, 0xC8, 0xDC});
+    CHECK(defaults.back_color == Rgb{0xE0, 0xB0, 0x90});
+    // A tetrahedron turned inside out shows only back faces: the image of the outward one with the
+    // two colours swapped.
     IndexedMesh m = tetrahedron();
     IndexedMesh flipped = m;
     for (auto& t : flipped.triangles) std::swap(t[1], t[2]);
+    const Rgb a{200, 60, 30}, b{30, 90, 210};
     for (const bool smooth : {true, false}) {
+        CAPTURE(smooth);
         RenderOptions o = small();
         o.smooth = smooth;
         o.view = View::iso();
-        const Image a = nmesh::render(m, o);
-        CHECK(covered_count(a) > 1000);
-        CHECK(nmesh::render(flipped, o).rgb == a.rgb);
+        o.color = a;
+        o.back_color = b;
+        const Image out = nmesh::render(m, o);
+        CHECK(covered_count(out) > 1000);
+        o.color = b;
+        o.back_color = a;
+        CHECK(nmesh::render(flipped, o).rgb == out.rgb);
+        CHECK(nmesh::render(m, o).rgb != out.rgb);
     }
-    // One triangle seen from behind covers the same pixels as seen from the front.
+    // One triangle seen from behind covers the same pixels as seen from the front, lit alike, in
+    // the back colour's hue instead of the surface's.
     IndexedMesh tri;
     tri.positions = {{0, 0, 0}, {1, 0, 0}, {0.3f, 0.9f, 0}};  // no pixel centre on an edge
     tri.triangles = {{0, 1, 2}};
+    for (const bool smooth : {true, false}) {
+        CAPTURE(smooth);
+        RenderOptions o = small();
+        o.smooth = smooth;
+        const Image front = nmesh::render(tri, o);
+        o.view = {180.0, 0.0};
+        const Image back = nmesh::render(tri, o);
+        CHECK(covered_count(front) > 5000);
+        CHECK(covered_count(back) == covered_count(front));
+        const Rgb f = front.pixel(100, 100), r = back.pixel(100, 100);
+        double front_shade = 0, back_shade = 0;
+        CHECK(has_hue(f, o.color, &front_shade));
+        CHECK_FALSE(has_hue(f, o.back_color));
+        CHECK(f[2] > f[0]);  // cool
+        CHECK(has_hue(r, o.back_color, &back_shade));
+        CHECK_FALSE(has_hue(r, o.color));
+        CHECK(r[0] > r[2]);  // warm
+        CHECK(front_shade > 0.5);
+        CHECK(back_shade == doctest::Approx(front_shade).epsilon(0.02));
+        o.back_color = {0, 255, 0};
+        const Image green = nmesh::render(tri, o);
+        CHECK(has_hue(green.pixel(100, 100), {0, 255, 0}));
+        o.view = View::front();
+        CHECK(nmesh::render(tri, o).rgb == front.rgb);  // the back colour does not reach the front
+    }
+}
+
+TEST_CASE("an open surface shows its inside in the back colour") {
+    // The sphere without its front cap: through the hole, the inside of the far wall; around it,
+    // the outside of the remaining band.
+    const IndexedMesh m = open_sphere(12);
     RenderOptions o = small();
-    const Image front = nmesh::render(tri, o);
+    const Image img = nmesh::render(m, o);
+    const Camera cam = nmesh::frame_camera(m, o);
+    const Vec3 centre = cam.project({0, 0, 0});
+    CHECK(has_hue(img.pixel(int(centre.x), int(centre.y)), o.back_color));
+    const Vec3 band = cam.project({-0.9f, 0, 0});  // on the outside, left of the hole
+    CHECK(has_hue(img.pixel(int(band.x), int(band.y)), o.color));
+    // From behind, the closed side hides the inside: the back colour shows nowhere.
     o.view = {180.0, 0.0};
-    const Image back = nmesh::render(tri, o);
-    CHECK(covered_count(front) > 5000);
-    CHECK(covered_count(back) == covered_count(front));
-    CHECK(back.pixel(100, 100) == front.pixel(100, 100));
+    const Image behind = nmesh::render(m, o);
+    o.back_color = {255, 0, 0};
+    CHECK(nmesh::render(m, o).rgb == behind.rgb);
+}
+
+TEST_CASE("a closed mesh seen from outside shows no back face") {
+    // Rendered with a glaring back colour and with the surface colour as back colour, the images
+    // must be the same, pixel for pixel.
+    const std::vector<View> views = {View::front(),  View::side(), View::top(),  View::iso(),
+                                     {200.0, -30.0}, {33.0, 71.0}, {301.0, -5.0}};
+    const IndexedMesh meshes[] = {tetrahedron(), cube(), sphere(6),
+                                  merged(cube(), box({0, 0, 1.5f}, {0.3f, 0.3f, 0.3f}))};
+    for (std::size_t i = 0; i < std::size(meshes); ++i) {
+        for (const View& view : views) {
+            for (const int ss : {1, 3}) {
+                for (const bool smooth : {true, false}) {
+                    CAPTURE(i);
+                    CAPTURE(view.azimuth_deg);
+                    CAPTURE(view.elevation_deg);
+                    CAPTURE(ss);
+                    CAPTURE(smooth);
+                    RenderOptions o = small(150, 120);
+                    o.view = view;
+                    o.supersample = ss;
+                    o.smooth = smooth;
+                    o.back_color = o.color;
+                    const Image plain = nmesh::render(meshes[i], o);
+                    o.back_color = {255, 0, 0};
+                    CHECK(nmesh::render(meshes[i], o).rgb == plain.rgb);
+                }
+            }
+        }
+    }
+    // Along the octahedron's outline, seen from the front, each back face meets a front face at
+    // exactly the same depth, and the sample centres on the outline are covered by both: the front
+    // face must win although the back faces come first. The bounding sphere's radius is 1, so the
+    // scale is 0.9 * 201 / 2 pixels per unit and r puts the corners 45 pixels from the centre, on
+    // a pixel centre; supersample 1, so every sample on the outline is a pixel.
+    const float r = float(45.0 / (0.45 * 201.0));
+    IndexedMesh oct = octahedron(r, 1.0f);
+    for (const bool reversed : {false, true}) {
+        CAPTURE(reversed);
+        if (reversed) std::reverse(oct.triangles.begin(), oct.triangles.end());
+        for (const bool smooth : {true, false}) {
+            CAPTURE(smooth);
+            RenderOptions o = small(201, 201);
+            o.smooth = smooth;
+            o.back_color = o.color;
+            const Image plain = nmesh::render(oct, o);
+            CHECK(covered(plain, 100 + 44, 100));
+            CHECK_FALSE(covered(plain, 100 + 46, 100));
+            o.back_color = {255, 0, 0};
+            const Image marked = nmesh::render(oct, o);
+            int back = 0;
+            for (int y = 0; y < marked.height; ++y)
+                for (int x = 0; x < marked.width; ++x) back += marked.pixel(x, y) != plain.pixel(x, y);
+            CHECK(back == 0);
+        }
+    }
 }
 
 // ---- shading ---------------------------------------------------------------------------------------
@@ -830,6 +969,32 @@ TEST_CASE("vertex values colour the surface through the ramp") {
     const Rgb r = nmesh::render(m, o).pixel(100, 100);
     CHECK(r[0] > r[1]);
     CHECK(r[0] > r[2]);
+}
+
+TEST_CASE("vertex values keep their colours on back faces, darkened") {
+    IndexedMesh tri;
+    tri.positions = {{0, 0, 0}, {1, 0, 0}, {0.3f, 0.9f, 0}};
+    tri.triangles = {{0, 1, 2}};
+    const std::vector<float> values(3, 0.75f);  // yellow
+    for (const bool smooth : {true, false}) {
+        CAPTURE(smooth);
+        RenderOptions o = small();
+        o.smooth = smooth;
+        o.vertex_values = &values;
+        o.value_min = 0.0f;
+        o.value_max = 1.0f;
+        const Rgb yellow = nmesh::ramp_color(0.75);
+        const Rgb front = nmesh::render(tri, o).pixel(100, 100);
+        o.view = {180.0, 0.0};
+        const Image back = nmesh::render(tri, o);
+        const Rgb behind = back.pixel(100, 100);
+        double front_shade = 0, back_shade = 0;
+        CHECK(has_hue(front, yellow, &front_shade));
+        CHECK(has_hue(behind, yellow, &back_shade));
+        CHECK(back_shade == doctest::Approx(0.6 * front_shade).epsilon(0.02));
+        o.back_color = {255, 0, 0};  // not used with vertex values
+        CHECK(nmesh::render(tri, o).rgb == back.rgb);
+    }
 }
 
 TEST_CASE("each view gives its own image, with the extents the view shows") {

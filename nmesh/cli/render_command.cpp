@@ -40,6 +40,10 @@ constexpr const char* kRenderUsage =
     "  --flat                 flat shading: one normal per triangle, so the facets show\n"
     "  --wireframe            draw the triangles' edges over the shading\n"
     "  --color RRGGBB         surface colour, hexadecimal (default BEC8DC)\n"
+    "  --back-color RRGGBB    colour of back faces, those turned away from the camera (the far\n"
+    "                         side of an open surface, flipped triangles), hexadecimal (default\n"
+    "                         E0B090); with --error-map they keep the map's colours instead,\n"
+    "                         darkened to 60%\n"
     "  --background RRGGBB    background colour, hexadecimal (default FFFFFF)\n"
     "  --supersample N        N x N samples per pixel for smooth edges, 1 to 4 (default 2)\n"
     "  --error-map POINTS     colour each vertex by its distance to the nearest point of the cloud\n"
@@ -133,8 +137,8 @@ int run_render(int argc, char** argv) {
         return 0;
     }
     const Arguments args(argc, argv, 2, {"--flat", "--wireframe"},
-                         {"-o", "--output", "--size", "--view", "--azimuth", "--elevation", "--color", "--background",
-                          "--supersample", "--error-map", "--error-max"});
+                         {"-o", "--output", "--size", "--view", "--azimuth", "--elevation", "--color", "--back-color",
+                          "--background", "--supersample", "--error-map", "--error-max"});
     if (args.positional().size() != 1) throw UsageError("render takes one MESH file");
     const std::string input = args.positional()[0];
     const std::string output = args.has("-o") ? args.text("-o") : args.text("--output");
@@ -157,6 +161,7 @@ int run_render(int argc, char** argv) {
     options.smooth = !args.has("--flat");
     options.wireframe = args.has("--wireframe");
     if (args.has("--color")) options.color = parse_color("--color", args.text("--color"));
+    if (args.has("--back-color")) options.back_color = parse_color("--back-color", args.text("--back-color"));
     if (args.has("--background")) options.background = parse_color("--background", args.text("--background"));
     const std::uint64_t supersample = args.count("--supersample", std::uint64_t(options.supersample));
     if (supersample < 1 || supersample > 4) throw UsageError("option --supersample must be from 1 to 4");

@@ -33,6 +33,15 @@ constexpr double kLightRight = -1.0, kLightUp = 1.0, kLightToward = 2.0;
 // linearly to no change one output pixel away on each side — a line about one pixel wide that
 // keeps the shading (and the ramp colour) visible on meshes whose edges crowd together.
 constexpr double kEdgeShade = 0.2;
+// With vertex values, back faces keep the ramp's colour (so the scale still reads on both sides)
+// and are darkened to this share of their shaded brightness instead of taking back_color.
+constexpr double kBackValueShade = 0.6;
+// Back faces are written into the depth buffer this share of the bounding sphere's radius farther
+// than they are (over 500 times float's resolution there, and far below a pixel): where a back
+// face meets a front one at a silhouette, or lies on it, the two depths tie or differ by rounding
+// only, and the front face must win whatever the triangle order, or a closed mesh would show
+// specks of the back colour along its outline.
+constexpr double kBackDepthShift = 1.0 / 16384;
 
 void check_options(const IndexedMesh& mesh, const RenderOptions& o) {
     if (o.width < 1 || o.width > kMaxSide || o.height < 1 || o.height > kMaxSide)
@@ -162,10 +171,18 @@ std::int64_t last_sample_at_or_before(std::int64_t f) {
 // centres inside the snapped triangle; a centre exactly on an edge belongs to the triangle for
 // which that edge, walked with the triangle positively oriented, points down (or left, when
 // horizontal) — exactly one of the two triangles sharing the edge.
-void rasterize(std::uint32_t t, const Projected& a, const Projected& b, const Projected& c, DepthBuffer& buf) {
+// Returns whether the triangle is a back face: whether its counter-clockwise normal points away
+// from the camera, decided on the snapped vertices (clockwise on the image) so that it agrees
+// with the coverage even for a sliver seen edge on, which snapping may turn over. Back faces are
+// written back_shift deeper than they are (kBackDepthShift).
+bool rasterize(std::uint32_t t, const Projected& a, const Projected& b, const Projected& c, double back_shift,
+               DepthBuffer& buf) {
     const Projected* v[3] = {&a, &b, &c};
     std::int64_t area = (v[1]->fx - v[0]->fx) * (v[2]->fy - v[0]->fy) - (v[1]->fy - v[0]->fy) * (v[2]->fx - v[0]->fx);
-    if (area == 0) return;
+    if (area == 0) return false;
+    // y grows downwards: a triangle counter-clockwise from the camera has a negative area here.
+    const bool back = area > 0;
+    const double shift = back ? back_shift : 0.0;
     if (area < 0) {
         std::swap(v[1], v[2]);
         area = -area;
@@ -178,7 +195,7 @@ void rasterize(std::uint32_t t, const Projected& a, const Projected& b, const Pr
     const std::int64_t i1 = std::min<std::int64_t>(buf.width - 1, last_sample_at_or_before(max_x));
     const std::int64_t j0 = std::max<std::int64_t>(0, first_sample_at_or_after(min_y));
     const std::int64_t j1 = std::min<std::int64_t>(buf.height - 1, last_sample_at_or_before(max_y));
-    if (i0 > i1 || j0 > j1) return;
+    if (i0 > i1 || j0 > j1) return back;
 
     // Edge k runs from vertex k+1 to vertex k+2; its function, positive inside, is the weight of
     // vertex k times twice the area.
@@ -200,7 +217,7 @@ void rasterize(std::uint32_t t, const Projected& a, const Projected& b, const Pr
         std::size_t at = std::size_t(j) * std::size_t(buf.width) + std::size_t(i0);
         for (std::int64_t i = i0; i <= i1; ++i, ++at) {
             if (((w0 + bias[0]) | (w1 + bias[1]) | (w2 + bias[2])) >= 0) {
-                const float z = float(double(w0) * z0 + double(w1) * z1 + double(w2) * z2);
+                const float z = float(double(w0) * z0 + double(w1) * z1 + double(w2) * z2 - shift);
                 if (z > buf.depth[at]) {
                     buf.depth[at] = z;
                     buf.id[at] = t;
@@ -212,6 +229,7 @@ void rasterize(std::uint32_t t, const Projected& a, const Projected& b, const Pr
         }
         for (int k = 0; k < 3; ++k) row[k] += step_y[k];
     }
+    return back;
 }
 
 // What shading a sample of a triangle needs: its barycentric coordinates as linear functions of
@@ -219,12 +237,20 @@ void rasterize(std::uint32_t t, const Projected& a, const Projected& b, const Pr
 struct TriangleShading {
     double b0[3], b1[3];  // b_k(x, y) = c[0] * x + c[1] * y + c[2]; b2 = 1 - b0 - b1
     Vec3 normal;          // unit face normal, facing the viewer
-    bool back = false;    // whether the triangle faces away (its vertex normals get flipped)
+    bool back = false;    // whether the triangle faces away: its vertex normals get flipped, and
+                          // it takes back_color (or, with vertex values, is darkened)
     double height[3];     // distance from vertex k to the opposite edge, in output pixels
 };
 
+// The unit normal of triangle t, by the counter-clockwise rule (zero when too small for float).
+Vec3 face_normal(const IndexedMesh& mesh, std::size_t t) {
+    const auto& tri = mesh.triangles[t];
+    const Vec3 a = mesh.positions[tri[0]], b = mesh.positions[tri[1]], c = mesh.positions[tri[2]];
+    return normalized(cross(b - a, c - a));
+}
+
 TriangleShading prepare(const IndexedMesh& mesh, std::size_t t, const std::vector<Projected>& proj, const Camera& cam,
-                        int ss) {
+                        int ss, bool back) {
     const auto& tri = mesh.triangles[t];
     const Projected& p0 = proj[tri[0]];
     const Projected& p1 = proj[tri[1]];
@@ -246,9 +272,8 @@ TriangleShading prepare(const IndexedMesh& mesh, std::size_t t, const std::vecto
         const double len = std::hypot(b.x - a.x, b.y - a.y);
         s.height[k] = std::fabs(area) / len / ss;
     }
-    const Vec3 a = mesh.positions[tri[0]], b = mesh.positions[tri[1]], c = mesh.positions[tri[2]];
-    const Vec3 n = normalized(cross(b - a, c - a));
-    s.back = dot(n, cam.toward) < 0.0f;
+    const Vec3 n = face_normal(mesh, t);
+    s.back = back;
     s.normal = s.back ? -n : n;
     if (squared_norm(s.normal) == 0.0f) s.normal = cam.toward;  // too small for float: face the viewer
     return s;
@@ -328,9 +353,13 @@ Image render(const IndexedMesh& mesh, const RenderOptions& options) {
     buf.depth.assign(samples, -std::numeric_limits<float>::infinity());
     buf.id.assign(samples, kNoTriangle);
     const std::vector<Projected> proj = project_vertices(mesh, used, cam, ss);
+    std::vector<char> back(mesh.triangles.size(), 0);
+    // The bounding sphere's radius, as make_camera fitted it into the image.
+    const double radius = 0.5 * (1.0 - 2.0 * kRenderMargin) * std::min(options.width, options.height) / cam.scale;
+    const double back_shift = kBackDepthShift * radius;
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
         const auto& tri = mesh.triangles[t];
-        rasterize(std::uint32_t(t), proj[tri[0]], proj[tri[1]], proj[tri[2]], buf);
+        back[t] = rasterize(std::uint32_t(t), proj[tri[0]], proj[tri[1]], proj[tri[2]], back_shift, buf);
     }
 
     // Shading: per-triangle set-up for the visible triangles only.
@@ -338,7 +367,7 @@ Image render(const IndexedMesh& mesh, const RenderOptions& options) {
     std::vector<char> prepared(mesh.triangles.size(), 0);
     for (const std::uint32_t t : buf.id) {
         if (t == kNoTriangle || prepared[t]) continue;
-        shading[t] = prepare(mesh, t, proj, cam, ss);
+        shading[t] = prepare(mesh, t, proj, cam, ss, back[t]);
         prepared[t] = 1;
     }
     const std::vector<Vec3> normals = options.smooth ? vertex_normals(mesh) : std::vector<Vec3>();
@@ -358,11 +387,13 @@ Image render(const IndexedMesh& mesh, const RenderOptions& options) {
             const Vec3 u = normalized(s.back ? -m : m);
             if (squared_norm(u) > 0.0f) n = u;
         }
-        const double intensity = kAmbient + kDiffuse * std::max(0.0f, dot(n, light));
-        float base[3] = {float(options.color[0]), float(options.color[1]), float(options.color[2])};
+        double intensity = kAmbient + kDiffuse * std::max(0.0f, dot(n, light));
+        const std::array<std::uint8_t, 3>& surface = s.back ? options.back_color : options.color;
+        float base[3] = {float(surface[0]), float(surface[1]), float(surface[2])};
         if (!ramp.empty()) {
             const auto c = ramp_color(b0 * ramp[tri[0]] + b1 * ramp[tri[1]] + b2 * ramp[tri[2]]);
             for (int i = 0; i < 3; ++i) base[i] = c[i];
+            if (s.back) intensity *= kBackValueShade;
         }
         for (int i = 0; i < 3; ++i) out[i] = float(base[i] * intensity);
         if (options.wireframe) {
