@@ -13,8 +13,9 @@ namespace nmesh {
 enum class Topology {
     sphere,  // the paper's algorithm: the tetrahedron's genus 0, bit for bit as it always was
     closed,  // handles learnt from the data (nmesh/learn/handles.h); a closed surface of that genus
+    open,    // as closed, then opened where the cloud has no data (nmesh/finish/open_surface.h)
 };
-// "sphere" / "closed", and back; parse_topology throws ParameterError naming the choices.
+// "sphere" / "closed" / "open", and back; parse_topology throws ParameterError naming the choices.
 const char* topology_name(Topology t);
 Topology parse_topology(const char* name);
 

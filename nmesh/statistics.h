@@ -25,6 +25,10 @@ struct Statistics {
     std::uint64_t membrane_patches = 0;
     std::uint64_t handles = 0;
     std::uint64_t membrane_faces_removed = 0;
+    // Topology open (nmesh/finish/open_surface.h): faces taken off as the second sheet of a
+    // double layer, and faces taken off as far from every point.
+    std::uint64_t layer_faces_removed = 0;
+    std::uint64_t open_faces_removed = 0;
     std::uint64_t indexed_points = 0;  // points in the nearest-point index (0 when none was built)
     std::uint64_t index_bytes = 0;     //   its memory (PointGrid::memory_bytes)
     double seconds = 0.0;              // learning time, wall clock (normalisation included)
@@ -34,7 +38,8 @@ struct Statistics {
     // reversed to face outward (negative signed volume), crossing triangle pairs by the exact
     // test, faces pointing inward. A valid surface has no crossing pair and no inward face.
     bool reoriented = false;
-    int genus = 0;  // of the output (closed): (2 - V + E - F) / 2
+    int genus = 0;                    // of the output (-1 should it not be a manifold)
+    std::uint64_t boundary_loops = 0;  // of the output: 0 for a closed surface
     std::uint64_t crossing_pairs = 0;
     std::uint64_t inward_faces = 0;
     // Time split by phase, filled only when Callbacks::profile is set (timing costs time).

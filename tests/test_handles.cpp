@@ -83,9 +83,11 @@ TEST_CASE("topology closed on a sphere sample makes no handle: the sphere mode's
 TEST_CASE("the topology mode by name") {
     CHECK(parse_topology("sphere") == Topology::sphere);
     CHECK(parse_topology("closed") == Topology::closed);
+    CHECK(parse_topology("open") == Topology::open);
+    CHECK(std::string(topology_name(Topology::open)) == "open");
     CHECK(std::string(topology_name(Topology::closed)) == "closed");
     CHECK(std::string(topology_name(Topology::sphere)) == "sphere");
-    CHECK_THROWS_WITH_AS(parse_topology("torus"), doctest::Contains("sphere or closed"), ParameterError);
+    CHECK_THROWS_WITH_AS(parse_topology("torus"), doctest::Contains("sphere, closed or open"), ParameterError);
     CHECK_THROWS_AS(parse_topology(nullptr), ParameterError);
     Parameters p;
     p.topology = Topology(7);

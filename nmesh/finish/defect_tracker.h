@@ -87,6 +87,7 @@ public:
             Halfedge h = mesh_.halfedge(f);
             for (int i = 0; i < 3; ++i, h = mesh_.next(h)) {
                 const Halfedge t = Mesh::twin(h);
+                if (mesh_.is_boundary(t)) continue;                      // one triangle: no fold
                 if (state(mesh_.face(t)) == kRecent && t < h) continue;  // an edge between recent ones once
                 if (edge_folded(mesh_, h, cos_limit_)) folds_.push_back(Mesh::edge(h));
             }
@@ -170,7 +171,8 @@ bool restore_vertex_count(Mesh& mesh, std::uint32_t target, const std::vector<Fa
             Halfedge h = Mesh::halfedge(Edge(e), 0);
             if (mesh.is_removed(h) || length(mesh, h) != std::fabs(key)) continue;
             if (grow) {
-                changed(split_edge(mesh, h));
+                const Vertex a = split_edge(mesh, h);
+                if (a.valid()) changed(a);
                 continue;
             }
             if (!mesh.can_collapse(h)) h = Mesh::twin(h);

@@ -83,6 +83,7 @@ inline float cot_at(const Vec3& a, const Vec3& b, const Vec3& c) {
 }
 
 inline bool edge_folded(const Mesh& mesh, Halfedge h, float cos_limit) {
+    if (mesh.is_boundary(Mesh::edge(h))) return false;  // one triangle: nothing to fold against
     const Vec3 n0 = area_vector(mesh, mesh.face(h)), n1 = area_vector(mesh, mesh.face(Mesh::twin(h)));
     const float l0 = squared_norm(n0), l1 = squared_norm(n1);
     if (l0 == 0.0f || l1 == 0.0f) return true;  // a degenerate triangle
@@ -91,12 +92,14 @@ inline bool edge_folded(const Mesh& mesh, Halfedge h, float cos_limit) {
 
 // Where tangential relaxation takes a vertex: towards the area-weighted centroid of its triangles'
 // centroids, without the normal component of the move, then (with a cloud) pulled towards it.
+// A boundary vertex stays: relaxation would draw the boundary inwards.
 inline Vec3 relaxed_position(const Mesh& mesh, Vertex v, const CloudSurface* cloud, float mean_edge) {
     const Vec3 p = mesh.position(v);
+    if (mesh.is_boundary(v)) return p;
     Vec3 centroid, normal;
     float area = 0.0f, ring_length = 0.0f;
     std::uint32_t valence = 0;
-    mesh.for_each_outgoing(v, [&](Halfedge h) {
+    mesh.for_each_corner(v, [&](Halfedge h) {
         const Vec3& q1 = mesh.position(mesh.to(h));
         const Vec3& q2 = mesh.position(mesh.to(mesh.next(h)));
         const Vec3 x = cross(q1 - p, q2 - p);  // twice the area, along the normal
@@ -128,7 +131,7 @@ inline Vec3 relaxed_position(const Mesh& mesh, Vertex v, const CloudSurface* clo
 inline float distance_to_ring(const Mesh& mesh, Vertex v, const Vec3& x) {
     float best = std::numeric_limits<float>::infinity();
     const Vec3& a = mesh.position(v);
-    mesh.for_each_outgoing(v, [&](Halfedge h) {
+    mesh.for_each_corner(v, [&](Halfedge h) {
         const Vec3 y =
             closest_point_on_triangle_float(x, a, mesh.position(mesh.to(h)), mesh.position(mesh.to(mesh.next(h))));
         best = std::min(best, squared_distance(x, y));

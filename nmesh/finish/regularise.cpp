@@ -27,6 +27,7 @@ std::uint64_t flip_to_delaunay(Mesh& mesh, float max_dihedral_deg) {
         const Edge e = stack.back();
         stack.pop_back();
         queued[e.idx] = 0;
+        if (mesh.is_boundary(e)) continue;  // a boundary edge has one triangle and stays
         const Halfedge h = Mesh::halfedge(e, 0);
         const Vertex a = mesh.from(h), b = mesh.to(h);
         const Vertex c = mesh.to(mesh.next(h)), d = mesh.to(mesh.next(Mesh::twin(h)));
@@ -86,7 +87,7 @@ void fit_centroids(Mesh& mesh, const std::vector<Vec3>& cloud, float weight) {
         Vec3 centroid, normal, sum;
         float area = 0.0f;
         std::uint32_t n_points = 0;
-        mesh.for_each_outgoing(v, [&](Halfedge h) {
+        mesh.for_each_corner(v, [&](Halfedge h) {
             const Vec3& q1 = mesh.position(mesh.to(h));
             const Vec3& q2 = mesh.position(mesh.to(mesh.next(h)));
             const Vec3 x = cross(q1 - p, q2 - p);
@@ -101,7 +102,7 @@ void fit_centroids(Mesh& mesh, const std::vector<Vec3>& cloud, float weight) {
         Vec3 move;
         if (area > 0.0f) move += (centroid * (1.0f / area) - p) * weight;
         if (n_points > 0) move += sum * (weight / float(n_points));
-        next[i] = p + (move - n * dot(move, n));
+        next[i] = mesh.is_boundary(v) ? p : p + (move - n * dot(move, n));  // a boundary stays
     }
     for (std::size_t i = 0; i < verts.size(); ++i) mesh.set_position(verts[i], next[i]);
 }

@@ -39,11 +39,14 @@ std::vector<Edge> find_folded_edges(const Mesh& mesh, float dihedral_deg) {
 }
 
 Vertex split_edge(Mesh& mesh, Halfedge h) {
+    // From the other end when from(h) is on a boundary (Mesh::can_split); an invalid handle when
+    // both ends are.
+    if (mesh.is_boundary(mesh.from(h))) h = Mesh::twin(h);
     // Mesh::split of b = from(h) hands the new vertex the half-edges towards x = to(h) and its
     // two ring neighbours c and d; the triangles (a, x, .) replace (b, x, .) and (a, b, c),
     // (b, a, d) fill the rest: with a at the midpoint, the two old triangles, subdivided.
     const Vec3 mid = (mesh.position(mesh.from(h)) + mesh.position(mesh.to(h))) * 0.5f;
-    return mesh.split(mesh.cw_rotated(h), mesh.ccw_rotated(h), mid);
+    return mesh.try_split(mesh.cw_rotated(h), mesh.ccw_rotated(h), mid);
 }
 
 // Choice: folds and intersections are removed locally, by smoothing and, where smoothing alone
@@ -132,6 +135,7 @@ RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fo
             }
             if (!best.valid()) continue;
             const Vertex a = split_edge(mesh, best);
+            if (!a.valid()) continue;
             tracker.changed(a);
             seeds.push_back(a);
         }
@@ -169,6 +173,10 @@ RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fo
                     ++k;
                 });
                 const Vec3 p = mesh.position(region[i]);
+                if (mesh.is_boundary(region[i])) {  // a boundary stays
+                    next[i] = p;
+                    continue;
+                }
                 Vec3 d = (c * (1.0f / float(k)) - p) * 0.5f;
                 if (level[region[i].idx] == 1) {
                     const Vec3 n = mesh.vertex_normal(region[i]);

@@ -25,7 +25,7 @@ std::vector<Edge> find_folded_edges(const Mesh& mesh, float dihedral_deg = 120.0
 
 // Splits the edge of h at its midpoint (Mesh::split): the new vertex has valence 4 and the four
 // new triangles cover exactly the two old ones. Returns the new vertex.
-Vertex split_edge(Mesh& mesh, Halfedge h);
+Vertex split_edge(Mesh& mesh, Halfedge h);  // invalid when both ends are on a boundary
 
 struct RepairResult {
     std::size_t intersecting_pairs_before = 0;

@@ -61,7 +61,7 @@ NeuralMesh::NeuralMesh(PointSpan points, const BoundingBox& bounds, const Parame
         grid_.insert(v, mesh_.position(Vertex(v)));
         activity_.add(v, 0.0);
     }
-    if (params_.edge_swap || params_.topology == Topology::closed) {
+    if (params_.edge_swap || params_.topology != Topology::sphere) {
         // Eq. (9) against the cloud, or against the stratified sample that stands for a cloud
         // much denser than the mesh (Parameters::index_points_per_vertex); the handle search
         // measures against it too.

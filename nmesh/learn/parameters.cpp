@@ -7,13 +7,16 @@
 
 namespace nmesh {
 
-const char* topology_name(Topology t) { return t == Topology::closed ? "closed" : "sphere"; }
+const char* topology_name(Topology t) {
+    return t == Topology::open ? "open" : t == Topology::closed ? "closed" : "sphere";
+}
 
 Topology parse_topology(const char* name) {
     const std::string s = name ? name : "";
     if (s == "sphere") return Topology::sphere;
     if (s == "closed") return Topology::closed;
-    throw ParameterError("invalid parameter topology: must be sphere or closed, got '" + s + "'");
+    if (s == "open") return Topology::open;
+    throw ParameterError("invalid parameter topology: must be sphere, closed or open, got '" + s + "'");
 }
 
 void Parameters::validate() const {
@@ -33,8 +36,8 @@ void Parameters::validate() const {
     if (!(settle >= 0.0 && settle <= 1e6)) bad("settle", "must be in [0, 1e6], got " + std::to_string(settle));
     if (finish_rounds > 1000) bad("finish_rounds", "must be in [0, 1000], got " + std::to_string(finish_rounds));
     if (fit_rounds > 100) bad("fit_rounds", "must be in [0, 100], got " + std::to_string(fit_rounds));
-    if (topology != Topology::sphere && topology != Topology::closed)
-        bad("topology", "must be Topology::sphere or Topology::closed");
+    if (topology != Topology::sphere && topology != Topology::closed && topology != Topology::open)
+        bad("topology", "must be Topology::sphere, closed or open");
     if (fit_rounds > 0 && !finish) bad("fit_rounds", "needs the finishing stage (finish), which is off");
 }
 

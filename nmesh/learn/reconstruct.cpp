@@ -9,6 +9,8 @@
 #include "nmesh/spatial/cloud_sample.h"
 #include "nmesh/error.h"
 #include "nmesh/finish/finish.h"
+#include "nmesh/finish/open_surface.h"
+#include "nmesh/metrics.h"
 #include "nmesh/geometry/triangle_bvh.h"
 #include "nmesh/geometry/triangle_intersection.h"
 #include "nmesh/metrics/orientation.h"
@@ -163,15 +165,17 @@ void learn_to_target(NeuralMesh& engine, std::size_t cloud_size, const Parameter
     std::size_t next_snapshot = 0;
     std::uint32_t largest = engine.mesh().n_vertices();
     std::uint64_t largest_pass = 0;  // removal pass count when `largest` was reached
-    // Topology closed: the handle search each time the mesh grows by half, from kFirstHandleSearch
-    // vertices up to half the target, so that a handle made has the second half of the growth to
-    // learn its wall.
+    // Topology closed or open: the handle search each time the mesh grows by half, from
+    // kFirstHandleSearch vertices up to kLastHandleSearchPercent % of the target, so that a handle made has
+    // the rest of the growth to learn its wall.
     constexpr std::uint32_t kFirstHandleSearch = 512;
+    constexpr std::uint64_t kLastHandleSearchPercent = 50;
     std::uint32_t next_handle_search = kFirstHandleSearch;
     while (engine.mesh().n_vertices() < params.target_vertices) {
         engine.iterate();
-        if (params.topology == Topology::closed && engine.mesh().n_vertices() >= next_handle_search) {
-            if (4 * std::uint64_t(engine.mesh().n_vertices()) <= 3 * std::uint64_t(params.target_vertices)) engine.learn_handles();
+        if (params.topology != Topology::sphere && engine.mesh().n_vertices() >= next_handle_search) {
+            if (100 * std::uint64_t(engine.mesh().n_vertices()) <= kLastHandleSearchPercent * params.target_vertices)
+                engine.learn_handles();
             next_handle_search += next_handle_search / 2;
         }
         if (engine.mesh().n_vertices() > largest) {
@@ -223,7 +227,7 @@ void settle(NeuralMesh& engine, const Parameters& params, Reporter& reporter) {
 // input, parameters and seed give the same mesh on any machine: a limit in seconds would make the
 // number of repair rounds, and so the mesh, depend on the machine's speed. Its rounds are bounded
 // (FinishOptions::repair_max_rounds).
-bool finish_stage(const Mesh& learnt, std::unique_ptr<PointGrid> cloud_index, PointSpan cloud,
+bool finish_stage(const Mesh& learnt, std::unique_ptr<PointGrid>& cloud_index, PointSpan cloud,
                   const Normalization& norm, const Parameters& params, Reporter& reporter, Statistics& stats,
                   Mesh& mesh) {
     if (!cloud_index) {
@@ -239,14 +243,34 @@ bool finish_stage(const Mesh& learnt, std::unique_ptr<PointGrid> cloud_index, Po
     return mesh.n_vertices() == learnt.n_vertices();
 }
 
+// Topology open (nmesh/finish/open_surface.h): the second sheet of a double layer taken off the
+// learnt mesh (`layers`), or the faces far from the cloud taken off the finished one, against the
+// cloud index of the learning or a new one.
+void open_stage(Mesh& mesh, bool layers, std::unique_ptr<PointGrid>& cloud_index, PointSpan cloud,
+                const Normalization& norm, const Parameters& params, Statistics& stats) {
+    if (!cloud_index) {
+        cloud_index = index_cloud(cloud, norm.transform, norm.bounds, params);
+        record_index(*cloud_index, stats);
+    }
+    mesh.build_faces();
+    if (layers)
+        stats.layer_faces_removed = remove_double_layers(mesh, *cloud_index).removed_layer;
+    else
+        stats.open_faces_removed = open_unsupported(mesh, *cloud_index).removed_unsupported;
+}
+
 // Every closed output faces outward (its triangles reversed when the learning turned the whole
-// surface inside out), and its validity is measured: crossing pairs and inward faces.
+// surface inside out), and its validity is measured: crossing pairs and, for a closed one, inward
+// faces; its genus and boundary loops are counted.
 void check_output(Result& result) {
-    const long long v = (long long)result.mesh.positions.size(), f = (long long)result.mesh.triangles.size();
-    result.stats.genus = int((2 - v + f / 2) / 2);  // closed: E = 3F / 2
-    result.stats.reoriented = metrics_detail::orient_outward(result.mesh);
+    const MeshTopology t = mesh_topology(result.mesh);
+    result.stats.genus = t.genus;
+    result.stats.boundary_loops = t.boundary_loops;
+    if (t.closed) {
+        result.stats.reoriented = metrics_detail::orient_outward(result.mesh);
+        result.stats.inward_faces = metrics_detail::inward_faces(result.mesh, TriangleBvh(result.mesh));
+    }
     result.stats.crossing_pairs = count_self_intersections(result.mesh);
-    result.stats.inward_faces = metrics_detail::inward_faces(result.mesh, TriangleBvh(result.mesh));
 }
 
 }  // namespace
@@ -276,14 +300,19 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
     // The learnt mesh and the cloud's index leave the engine, which is destroyed: what follows
     // does not add to the memory of the grid, activity index and ring cache.
     Mesh learnt = engine->take_mesh();
-    std::unique_ptr<PointGrid> cloud_index = finish ? engine->take_cloud_index() : nullptr;
+    const bool open = !result.cancelled && params.topology == Topology::open;
+    std::unique_ptr<PointGrid> cloud_index = finish || open ? engine->take_cloud_index() : nullptr;
     engine.reset();
 
+    if (open) open_stage(learnt, true, cloud_index, cloud, norm, params, result.stats);
     Mesh finished;
     result.stats.finished =
-        finish && finish_stage(learnt, std::move(cloud_index), cloud, norm, params, reporter, result.stats, finished);
+        finish && finish_stage(learnt, cloud_index, cloud, norm, params, reporter, result.stats, finished);
     if (result.stats.finished) learnt = Mesh();  // freed before the output mesh is built
-    result.mesh = norm.to_input(result.stats.finished ? finished.to_indexed() : learnt.to_indexed());
+    Mesh& output = result.stats.finished ? finished : learnt;
+    if (open) open_stage(output, false, cloud_index, cloud, norm, params, result.stats);
+    cloud_index.reset();
+    result.mesh = norm.to_input(output.to_indexed());
     result.stats.seconds = learning_seconds;
     result.stats.seconds_finish = finish ? reporter.elapsed() - learning_seconds : 0.0;
     check_output(result);

@@ -331,7 +331,9 @@ Vec3 Mesh::vertex_normal(Vertex v) const {
     // their sum is the area-weighted normal sum.
     const Vec3& p = position(v);
     Vec3 n;
-    for_each_outgoing_cw(v, [&](Halfedge h) { n += cross(position(to(h)) - p, position(to(next(h))) - p); });
+    for_each_outgoing_cw(v, [&](Halfedge h) {
+        if (!is_boundary(h)) n += cross(position(to(h)) - p, position(to(next(h))) - p);
+    });
     return normalized(n);
 }
 

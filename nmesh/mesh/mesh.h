@@ -45,9 +45,9 @@
 // drop_faces() refuses. A boundary vertex has exactly one gap (no bow-tie): one outgoing and one
 // incoming boundary half-edge, and its stored half-edge is the outgoing one, so is_boundary(v)
 // is one load. On a closed mesh every boundary test is a compare of a zero counter.
-// Rotation next to a boundary: cw_rotated() (next(twin(h))) passes through the gap and works
-// everywhere; ccw_rotated() needs prev(h), which is next(next(h)) only inside a triangle, so the
-// counter-clockwise circulators need an interior vertex (asserted in debug builds).
+// Rotation next to a boundary: cw_rotated() (next(twin(h))) passes through the gap in one step;
+// ccw_rotated() walks round the vertex once to cross it (prev(h) is next(next(h)) only inside a
+// triangle). A loop over a vertex's triangles skips the gap (for_each_corner).
 //
 // Orientation: faces are counter-clockwise seen from outside; next() walks a face CCW; the
 // outgoing half-edges of a vertex are visited CCW by ccw_rotated(h) = twin(prev(h)).
@@ -173,8 +173,10 @@ public:
         const std::uint32_t ab = a < b ? a : b;
         return Halfedge(ab < c ? ab : c);
     }
-    // Next outgoing half-edge of from(h), counter-clockwise / clockwise.
-    Halfedge ccw_rotated(Halfedge h) const { return twin(prev(h)); }
+    // Next outgoing half-edge of from(h), counter-clockwise / clockwise. Counter-clockwise past
+    // a boundary gap costs a walk round the vertex (prev_on_boundary); on a closed mesh the test
+    // is a compare of a zero counter.
+    Halfedge ccw_rotated(Halfedge h) const { return twin(is_boundary(h) ? prev_on_boundary(h) : prev(h)); }
     Halfedge cw_rotated(Halfedge h) const { return next(twin(h)); }
     // The half-edge a -> b, or an invalid handle when a and b are not adjacent. O(valence(a)).
     Halfedge find_halfedge(Vertex a, Vertex b) const;
@@ -217,9 +219,20 @@ public:
     void for_each_neighbor(Vertex v, F&& f) const {
         for_each_outgoing(v, [&](Halfedge h) { f(to(h)); });
     }
+    // The faces round v (a boundary gap has none and is skipped).
     template <class F>
     void for_each_face_around(Vertex v, F&& f) const {
-        for_each_outgoing(v, [&](Halfedge h) { f(face(h)); });
+        for_each_outgoing(v, [&](Halfedge h) {
+            if (!is_boundary(h)) f(face(h));
+        });
+    }
+    // The outgoing half-edges of v that have a face, counter-clockwise: v's corners, each the
+    // triangle (v, to(h), to(next(h))).
+    template <class F>
+    void for_each_corner(Vertex v, F&& f) const {
+        for_each_outgoing(v, [&](Halfedge h) {
+            if (!is_boundary(h)) f(h);
+        });
     }
 
     // ---- geometry ---------------------------------------------------------------------------
