@@ -25,19 +25,23 @@ using nmesh::bench::Summary;
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: %s CLOUD [--vertices N] [--runs R] [--no-edge-swap] [--csv FILE]\n", argv[0]);
+        std::fprintf(stderr,
+                     "usage: %s CLOUD [--vertices N] [--runs R] [--no-edge-swap] [--topology MODE] [--csv FILE]\n",
+                     argv[0]);
         return 2;
     }
     nmesh::Parameters params;
     int runs = 5;
     std::string csv;
     try {
-        const nmesh::cli::Arguments args(argc, argv, 2, {"--no-edge-swap"}, {"--vertices", "--runs", "--csv"});
+        const nmesh::cli::Arguments args(argc, argv, 2, {"--no-edge-swap"},
+                                         {"--vertices", "--runs", "--csv", "--topology"});
         params.target_vertices = std::uint32_t(args.count("--vertices", 30000));
         runs = int(std::max<std::uint64_t>(1, args.count("--runs", 5)));
         params.edge_swap = !args.has("--no-edge-swap");
+        if (args.has("--topology")) params.topology = nmesh::parse_topology(args.text("--topology").c_str());
         csv = args.text("--csv");
-    } catch (const nmesh::cli::UsageError& e) {
+    } catch (const std::exception& e) {
         std::fprintf(stderr, "%s: %s\n", argv[0], e.what());
         return 2;
     }
@@ -59,8 +63,9 @@ int main(int argc, char** argv) {
         const double total =
             p.seconds_winner + p.seconds_update + p.seconds_split + p.seconds_collapse + p.seconds_swap;
         auto share = [&](double s) { return total > 0 ? 100.0 * s / total : 0.0; };
-        std::printf("cloud %s: %zu points -> %u vertices, edge swap %s, %d runs\n", argv[1], cloud.size(),
-                    params.target_vertices, params.edge_swap ? "on" : "off", runs);
+        std::printf("cloud %s: %zu points -> %u vertices, edge swap %s, topology %s, %d runs\n", argv[1], cloud.size(),
+                    params.target_vertices, params.edge_swap ? "on" : "off", nmesh::topology_name(params.topology),
+                    runs);
         std::printf("time      median %.3f s  min %.3f s  max %.3f s  (learning, steps 1-9)\n", t.median, t.min, t.max);
         std::printf(
             "finishing median %.3f s  min %.3f s  max %.3f s  (the stage after learning, not in the time above)\n",
@@ -75,10 +80,10 @@ int main(int argc, char** argv) {
         if (!csv.empty()) {
             std::FILE* f = std::fopen(csv.c_str(), "a");
             if (!f) throw nmesh::IoError(csv + ": cannot open for appending");
-            std::fprintf(f, "%zu,%u,%d,%d,%.4f,%.4f,%.4f,%.0f,%.1f,%.1f,%.1f,%.1f,%.1f,%.4f\n", cloud.size(),
-                         params.target_vertices, params.edge_swap ? 1 : 0, runs, t.median, t.min, t.max, it.median,
-                         share(p.seconds_winner), share(p.seconds_update), share(p.seconds_split),
-                         share(p.seconds_collapse), share(p.seconds_swap), fin.median);
+            std::fprintf(f, "%zu,%u,%d,%s,%d,%.4f,%.4f,%.4f,%.0f,%.1f,%.1f,%.1f,%.1f,%.1f,%.4f\n", cloud.size(),
+                         params.target_vertices, params.edge_swap ? 1 : 0, nmesh::topology_name(params.topology), runs,
+                         t.median, t.min, t.max, it.median, share(p.seconds_winner), share(p.seconds_update),
+                         share(p.seconds_split), share(p.seconds_collapse), share(p.seconds_swap), fin.median);
             std::fclose(f);
         }
     } catch (const nmesh::Error& e) {

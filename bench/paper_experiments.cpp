@@ -98,9 +98,11 @@ int main(int argc, char** argv) {
                         p.alpha_n = an;
                         p.edge_swap = swap;
                         p.seed = std::uint64_t(s);
-                        // The paper's algorithms as published: without nmesh's fold guard and finishing stage.
+                        // The paper's algorithms as published: without nmesh's fold guard, finishing stage and
+                        // handle search.
                         p.finish = false;
                         p.fold_guard = false;
+                        p.topology = nmesh::Topology::sphere;
                         const Run r = run_once(cloud, p);
                         dm.push_back(r.dm);
                         hd.push_back(r.hausdorff_rel);
@@ -193,7 +195,8 @@ int main(int argc, char** argv) {
                 nmesh::Parameters p;
                 p.target_vertices = 30000;
                 p.finish = finish;
-                p.fold_guard = finish;  // as published: neither the guard nor the stage
+                p.fold_guard = finish;  // as published: neither the guard nor the stage nor the handle search
+                p.topology = finish ? nmesh::Topology::closed : nmesh::Topology::sphere;
                 const nmesh::Result r = nmesh::reconstruct(cloud, p);
                 rows.push_back({finish ? "nmesh default: Neural Meshes ES + fold guard + finishing stage"
                                        : "nmesh, Neural Meshes ES as published",

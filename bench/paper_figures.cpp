@@ -63,6 +63,7 @@ nmesh::IndexedMesh run(const nmesh::PointCloud& cloud, std::uint32_t n, double a
     p.edge_swap = swap;
     p.finish = false;  // figures 6-9 compare the paper's algorithms as published
     p.fold_guard = false;
+    p.topology = nmesh::Topology::sphere;
     return nmesh::reconstruct(cloud, p).mesh;
 }
 

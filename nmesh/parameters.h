@@ -31,11 +31,14 @@ struct Parameters {
     // Choice beyond the paper: step 3 may not fold the winner's triangles back against its fan,
     // and a winner found folded moves to its ring's centroid instead (NeuralMesh::guard_fold).
     // Without it, folds of the coarse early mesh grow into inside-out parts. Off by itself for a
-    // flat cloud, whose closed mesh must fold flat. false, with finish false, gives the paper's
-    // plain algorithm, bit for bit.
+    // flat cloud, whose closed mesh must fold flat. false, with finish false and topology sphere,
+    // gives the paper's plain algorithm, bit for bit.
     bool fold_guard = true;
-    // Beyond the paper: whether the learning opens handles where the data has through-holes.
-    Topology topology = Topology::sphere;
+    // Beyond the paper: whether the learning opens handles where the data has through-holes
+    // (closed, the default: on genus-0 clouds it finds none and gives the sphere mode's mesh bit
+    // for bit; docs/algorithm.md, "Topology") and leaves the scan's holes open (open). sphere is
+    // the paper's algorithm.
+    Topology topology = Topology::closed;
     std::uint64_t seed = 1;  // the same seed and input give a bit-identical mesh
     // Iterations of steps 1-6 (no splits or collapses) run after the target size is reached, so
     // the last vertices settle onto the surface; in units of the final vertex count n

@@ -129,14 +129,18 @@ TEST_CASE("reconstruct() indexes a sample of a cloud much denser than the mesh, 
     p.index_points_per_vertex = 16;  // 4,800 of the 20,000 points
     struct Case {
         bool edge_swap, finish;
-        std::uint64_t indexed;
+        nmesh::Topology topology;
+        std::uint64_t indexed;  // the handle search (topology closed) needs the index too
     };
-    for (const Case c :
-         {Case{true, true, 4800}, Case{true, false, 4800}, Case{false, true, 4800}, Case{false, false, 0}}) {
+    for (const Case c : {Case{true, true, nmesh::Topology::closed, 4800}, Case{true, false, nmesh::Topology::closed, 4800},
+                         Case{false, true, nmesh::Topology::closed, 4800}, Case{false, false, nmesh::Topology::closed, 4800},
+                         Case{false, false, nmesh::Topology::sphere, 0}}) {
         CAPTURE(c.edge_swap);
         CAPTURE(c.finish);
+        CAPTURE(nmesh::topology_name(c.topology));
         p.edge_swap = c.edge_swap;
         p.finish = c.finish;
+        p.topology = c.topology;
         const nmesh::Result r = nmesh::reconstruct(cloud, p);
         CHECK(r.stats.indexed_points == c.indexed);
         CHECK((r.stats.index_bytes > 0) == (c.indexed > 0));

@@ -169,13 +169,14 @@ def reconstruct(
     points: npt.ArrayLike,
     vertices: int = 10000,
     *,
-    topology: str = "sphere",
+    topology: str = "closed",
     alpha_w: float = 0.08,
     alpha_n: float = 0.01,
     alpha: float = 0.95,
     cvs: int = 100,
     cec: int = 20,
     edge_swap: bool = True,
+    fold_guard: bool = True,
     finish: bool = True,
     seed: int = 1,
     progress: Optional[ProgressCallback] = None,
@@ -185,7 +186,8 @@ def reconstruct(
     index_points_per_vertex: int = 64,
     metrics: bool = True,
 ) -> Reconstruction:
-    """Learns a closed triangle mesh of exactly `vertices` vertices from the points.
+    """Learns a triangle mesh of exactly `vertices` vertices from the points (closed, unless
+    topology="open" leaves the scan's holes open, which takes the vertices inside them away).
 
     The same points, parameters and seed give the same mesh, bit for bit, as
     `nmesh reconstruct IN -o OUT --vertices N --seed S` (written with write_mesh, the same file).
@@ -195,12 +197,14 @@ def reconstruct(
         (float64, integers, a non-contiguous view, a list) is converted to float32 once.
     vertices: the target vertex count (>= 4). The defaults of the other parameters are Table 2 of
         the Neural Meshes ES paper; the command-line tool's --help explains each.
-    topology: the topology of the mesh. Only "sphere" (a closed genus-0 surface) exists in the
-        library today; other values raise ValueError. Other modes come with the library.
+    topology: "closed" (handles learnt where the cloud has through-holes; a closed surface of
+        that genus), "sphere" (genus 0: the paper's algorithm) or "open" (as closed, then opened
+        where the cloud has no data); other values raise ValueError.
     alpha_w, alpha_n: learning rates of the winner vertex and of its neighbours.
     alpha: the signal counter decay per iteration.
     cvs: a vertex split every `cvs` iterations.  cec: inactive vertices removed every cec * n.
     edge_swap: Neural Meshes ES (False: basic Neural Meshes).
+    fold_guard: step 3 may not fold the winner's triangles (False: eq. (2) as the paper has it).
     finish: the finishing stage (flips, relaxation onto the cloud, repair of folds).
     seed: the random seed (an integer in [0, 2**64 - 1]).
     progress: called about every 65,536 iterations and once when the learning ends, as
@@ -229,11 +233,6 @@ def reconstruct(
     """
     if not isinstance(topology, str):
         raise TypeError(f"topology must be a str, not {type(topology).__name__}")
-    if topology != "sphere":
-        raise ValueError(
-            f"invalid parameter topology: {topology!r}; only 'sphere' is available "
-            "(other topologies come with the library)"
-        )
     if progress is not None and not callable(progress):
         raise TypeError(f"progress must be callable or None, not {type(progress).__name__}")
     cloud = _as_points(points)
@@ -246,6 +245,8 @@ def reconstruct(
         cvs=_count("cvs", cvs),
         cec=_count("cec", cec),
         edge_swap=_flag("edge_swap", edge_swap),
+        topology=topology,
+        fold_guard=_flag("fold_guard", fold_guard),
         finish=_flag("finish", finish),
         seed=_count("seed", seed, _UINT64_MAX),
         settle=_real("settle", settle),

@@ -30,6 +30,8 @@ def reconstruct(
     finish_rounds: int,
     fit_rounds: int,
     index_points_per_vertex: int,
+    topology: str,
+    fold_guard: bool,
     progress: Optional[Callable[[int, int, float], Optional[bool]]],
     metrics: bool,
 ) -> Tuple[_Float32Array, _Int32Array, str, bool]: ...

@@ -84,7 +84,7 @@ def test_float32_points_are_not_copied(bunny: np.ndarray) -> None:
     assert nmesh._as_points(bunny) is bunny
     assert nmesh._as_points(bunny.astype(np.float64)) is not bunny
     # ...and the extension reads only such arrays, in place: it never converts one itself.
-    args = (400, 0.08, 0.01, 0.95, 100, 20, True, True, 1, 0.0, 10, 0, 64, None, False)
+    args = (400, 0.08, 0.01, 0.95, 100, 20, True, True, 1, 0.0, 10, 0, 64, "closed", True, None, False)
     for other in (bunny.astype(np.float64), np.asfortranarray(bunny), bunny[::2], bunny[:, :2]):
         with pytest.raises(TypeError, match="float32 array of shape"):
             _nmesh.reconstruct(other, *args)
@@ -101,12 +101,27 @@ def test_seed_and_parameters_reach_the_library(bunny: np.ndarray, bunny_mesh: nm
                                seed=2**64 - 1, index_points_per_vertex=0, metrics=False).stats
     assert params["seed"] == 2**64 - 1
     assert params["parameters"] == {"target_vertices": 300, "alpha_w": 0.05, "alpha_n": 0.02, "alpha": 0.9,
-                                    "cvs": 80, "cec": 15, "edge_swap": True, "fold_guard": True, "settle": 0, "finish": False,
+                                    "cvs": 80, "cec": 15, "edge_swap": True, "fold_guard": True, "topology": "closed",
+                                    "settle": 0, "finish": False,
                                     "finish_rounds": 10, "fit_rounds": 0, "index_points_per_vertex": 0}
     assert params["seconds_finish"] == 0
 
 
-def test_topology_sphere_only(sphere: np.ndarray) -> None:
-    assert len(nmesh.reconstruct(sphere, 50, topology="sphere", metrics=False).vertices) == 50
+def test_topology_modes(sphere: np.ndarray) -> None:
+    for mode in ("sphere", "closed", "open"):
+        r = nmesh.reconstruct(sphere, 300, topology=mode, metrics=False)
+        assert r.stats["parameters"]["topology"] == mode
+        assert r.stats["genus"] == 0 and r.stats["boundary_loops"] == 0  # a sphere sample: no handle, no hole
+    # The default, closed, finds no handle on a sphere: the sphere mode's mesh.
+    a = nmesh.reconstruct(sphere, 300, topology="sphere", metrics=False)
+    b = nmesh.reconstruct(sphere, 300, metrics=False)
+    assert np.array_equal(a.faces, b.faces) and np.array_equal(a.vertices, b.vertices)
     with pytest.raises(ValueError, match="topology.*'torus'"):
         nmesh.reconstruct(sphere, 50, topology="torus")
+
+
+def test_fold_guard_keyword(sphere: np.ndarray) -> None:
+    r = nmesh.reconstruct(sphere, 300, fold_guard=False, metrics=False)
+    assert r.stats["parameters"]["fold_guard"] is False
+    with pytest.raises(TypeError, match="fold_guard"):
+        nmesh.reconstruct(sphere, 300, fold_guard="no")
