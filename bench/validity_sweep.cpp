@@ -3,7 +3,7 @@
 // volume, the share of faces pointing inward, the Hausdorff distance and the time. Writes one CSV
 // row per run and a markdown summary per cloud, size and stage setting.
 //
-//   validity_sweep CLOUD... --csv OUT.csv --md OUT.md [--seeds 1-20] [--sizes 1000,3000,10000,30000]
+//   validity_sweep CLOUD... --csv OUT.csv --md OUT.md [--seeds 1-20] [--sizes 1000,3000,5000,10000,30000]
 //                  [--finish both|on|off] [--topology sphere|closed] [--check] [--exempt NAME,...]
 //
 // A size is run on a cloud only when the cloud has at least 1.1 points per vertex (fewer cannot
@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
                                          {"--csv", "--md", "--seeds", "--sizes", "--finish", "--exempt", "--topology"});
         clouds = args.positional();
         seeds = parse_range(args.text("--seeds", "1-20"));
-        sizes = parse_range(args.text("--sizes", "1000,3000,10000,30000"));
+        sizes = parse_range(args.text("--sizes", "1000,3000,5000,10000,30000"));
         finish_mode = args.text("--finish", "both");
         if (args.has("--topology")) g_topology = nmesh::parse_topology(args.text("--topology").c_str());
         csv = args.text("--csv");
@@ -124,7 +124,7 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
         std::fprintf(stderr,
                      "%s\nusage: %s CLOUD... --csv OUT.csv --md OUT.md [--seeds 1-20] "
-                     "[--sizes 1000,3000,10000,30000] [--finish both|on|off] [--check] [--exempt NAME,...]\n",
+                     "[--sizes 1000,3000,5000,10000,30000] [--finish both|on|off] [--check] [--exempt NAME,...]\n",
                      e.what(), argv[0]);
         return 2;
     }

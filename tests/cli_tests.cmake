@@ -38,6 +38,10 @@ expect(unknown_option 2 "unknown option --bogus" ${NMESH} reconstruct ${DATA} -o
 expect(bad_number 2 "--alpha-w needs a number" ${NMESH} reconstruct ${DATA} -o ${WORK}/x.ply --alpha-w fast)
 expect(bad_alpha 2 "invalid parameter alpha:" ${NMESH} reconstruct ${DATA} -o ${WORK}/x.ply --alpha 1.5)
 expect(bad_cvs 2 "invalid parameter cvs" ${NMESH} reconstruct ${DATA} -o ${WORK}/x.ply --cvs 0)
+expect(bad_topology 2 "invalid parameter topology: must be sphere, closed or open, got 'torus'"
+  ${NMESH} reconstruct ${DATA} -o ${WORK}/x.ply --topology torus)
+expect(topology_summary 0 "genus 0, 0 boundary loops \\(0 handles learnt\\)"
+  ${NMESH} reconstruct ${DATA} -o ${WORK}/topology.ply --vertices 600 --topology sphere)
 expect(small_target 2 "invalid parameter target_vertices" ${NMESH} reconstruct ${DATA} -o ${WORK}/x.ply --vertices 3)
 expect(output_is_input 2 "must not be the input" ${NMESH} reconstruct ${DATA} -o ${DATA})
 

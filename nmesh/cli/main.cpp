@@ -133,6 +133,8 @@ void print_summary(const Result& r, const std::string& output) {
                  (unsigned long long)s.splits, (unsigned long long)s.collapses, (unsigned long long)s.collapses_refused,
                  (unsigned long long)s.swaps_kept, (unsigned long long)s.swaps_tried, s.seconds,
                  s.seconds > 0 ? s.iterations / s.seconds / 1e6 : 0.0, finishing.c_str());
+    std::fprintf(stderr, "nmesh: genus %d, %llu boundary loops (%llu handles learnt)\n", s.genus,
+                 (unsigned long long)s.boundary_loops, (unsigned long long)s.handles);
 }
 
 // evaluate(), with its progress on stderr when it takes long (a cloud of millions of points).
@@ -251,6 +253,13 @@ int run_reconstruct(int argc, char** argv) {
         return 130;
     }
     write_mesh(output, r.mesh, write_options);
+    // Topology open takes the vertices inside the holes away: said, since the count was asked for.
+    if (r.mesh.positions.size() < p.target_vertices)
+        std::fprintf(stderr,
+                     "nmesh: note: %s has %zu vertices, %llu fewer than asked: the surface was opened where the "
+                     "cloud has no data\n",
+                     output.c_str(), r.mesh.positions.size(),
+                     (unsigned long long)(p.target_vertices - r.mesh.positions.size()));
     if (r.stats.crossing_pairs > 0 || r.stats.inward_faces > 0)
         std::fprintf(stderr,
                      "nmesh: warning: %s is not a valid surface: %llu pairs of crossing triangles, %llu faces "
