@@ -193,8 +193,8 @@ OpenReport remove_double_layers(Mesh& mesh, const PointGrid& cloud) {
                 if (!layered[f]) continue;
                 int votes = drop[f] ? 1 : -1;
                 for (Halfedge h = mesh.halfedge(Face(f)), s = h;;) {
-                    const std::uint32_t u = mesh.face(Mesh::twin(h)).idx;
-                    if (layered[u]) votes += drop[u] ? 1 : -1;
+                    const Face u = mesh.face(Mesh::twin(h));  // none across a boundary
+                    if (u.valid() && layered[u.idx]) votes += drop[u.idx] ? 1 : -1;
                     if ((h = mesh.next(h)) == s) break;
                 }
                 next[f] = votes > 0;

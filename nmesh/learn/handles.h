@@ -10,8 +10,9 @@
 //
 // Choices (docs/algorithm.md, "Topology"):
 //   - a face is unsupported when its centroid is farther from the cloud than kUnsupportedEdges
-//     mean edge lengths and kUnsupportedSpacings point spacings (the spacing: the square root of
-//     the mesh area per cloud point), so a coarse mesh or a sparse scan is not taken for a hole;
+//     times the faces' mean longest edge and kUnsupportedSpacings point spacings (the spacing: the
+//     square root of the mesh area per cloud point), so a coarse mesh or a sparse scan is not
+//     taken for a hole;
 //   - a patch counts when it has at least kMinFaces faces and is cap-like (its vector area at
 //     least kMinFlatness of its area: a fold or a web between two legs, which faces both ways,
 //     is not a cap);
@@ -20,6 +21,9 @@
 //     no other face, no cloud point comes near its inner part, and the cloud walls it round
 //     (points across its middle in every one of 8 directions, within 4 patch radii): a hole
 //     through the data, not the gap between two legs;
+//   - each patch is cut out from its face nearest the centre, one ring of faces away from the
+//     other patch (so that no edge joins the two rims already), and the rims are zipped from a
+//     vertex and the other rim's nearest one, with up to 8 other starts when an edge would repeat;
 //   - all or nothing per pair: if the cut or the join is refused, the mesh is left as it was.
 #pragma once
 
