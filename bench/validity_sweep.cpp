@@ -62,7 +62,7 @@ std::vector<std::uint64_t> parse_range(const std::string& text) {
 
 std::string name_of(const std::string& path) { return std::filesystem::path(path).stem().string(); }
 
-nmesh::Topology g_topology = nmesh::Topology::sphere;  // --topology, for every run
+nmesh::Topology g_topology = nmesh::Parameters{}.topology;  // --topology, for every run
 
 Run run_one(const std::string& name, const nmesh::PointCloud& cloud, std::uint32_t vertices, std::uint64_t seed,
             bool finish) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "nmesh/bounding_box.h"
 #include "nmesh/geometry/triangle_intersection.h"
 
 namespace nmesh {
@@ -150,6 +151,10 @@ HandleSearch open_handles(Mesh& mesh, const PointGrid& cloud) {
         ++alive;
     }
     if (alive == 0) return out;
+    BoundingBox box;
+    for (std::uint32_t v = 0; v < mesh.vertex_capacity(); ++v)
+        if (!mesh.is_removed(Vertex(v))) box.extend(mesh.position(Vertex(v)));
+    const float smallest_hole = kMinHoleRadius * float(box.diagonal());
     const float mean_edge = float(edges / alive);
     const float spacing = float(std::sqrt(area / double(cloud.size())));
     const float far = std::max(kUnsupportedEdges * mean_edge, kUnsupportedSpacings * spacing);
@@ -183,7 +188,8 @@ HandleSearch open_handles(Mesh& mesh, const PointGrid& cloud) {
         }
         if (p.area <= 0.0) continue;
         p.centre = p.centre * float(1.0 / p.area);
-        if (p.faces.size() >= kMinFaces && norm(p.vector_area) >= kMinFlatness * p.area)
+        if (p.faces.size() >= kMinFaces && norm(p.vector_area) >= kMinFlatness * p.area &&
+            p.radius() >= smallest_hole)
             patches.push_back(std::move(p));
     }
     out.patches = std::uint32_t(patches.size());

@@ -13,9 +13,11 @@
 //     times the faces' mean longest edge and kUnsupportedSpacings point spacings (the spacing: the
 //     square root of the mesh area per cloud point), so a coarse mesh or a sparse scan is not
 //     taken for a hole;
-//   - a patch counts when it has at least kMinFaces faces and is cap-like (its vector area at
-//     least kMinFlatness of its area: a fold or a web between two legs, which faces both ways,
-//     is not a cap);
+//   - a patch counts when it has at least kMinFaces faces, is cap-like (its vector area at least
+//     kMinFlatness of its area: a fold or a web between two legs, which faces both ways, is not
+//     a cap) and spans a disc of radius at least kMinHoleRadius of the mesh's bounding-box
+//     diagonal (the gap between two legs that nearly touch makes small patches; a bore that
+//     small is not learnt);
 //   - two patches pair when each lies behind the other (their mean normals point away from each
 //     other, the segment between their centres passes through the inside), the segment meets
 //     no other face, no cloud point comes near its inner part, and the cloud walls it round
@@ -47,6 +49,7 @@ inline constexpr float kUnsupportedEdges = 0.8f;
 inline constexpr float kUnsupportedSpacings = 2.0f;
 inline constexpr std::uint32_t kMinFaces = 6;
 inline constexpr float kMinFlatness = 0.5f;
+inline constexpr float kMinHoleRadius = 0.03f;
 
 // `mesh`: closed, with its face index; `cloud`: the nearest-point index over the same (normalised)
 // points the mesh learns. O(F log F + pairs x F).
