@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "cloud_fixtures.h"
+#include "sanitized.h"
 #include "nmesh/error.h"
 #include "nmesh/geometry/triangle_intersection.h"
 #include "nmesh/mesh/mesh.h"
@@ -31,7 +32,8 @@ int checked_genus(const IndexedMesh& m) {
 TEST_CASE("topology closed learns the handle of a torus; sphere mode cannot") {
     const PointCloud torus = test::torus_cloud(20000);
     int with_handle = 0;
-    for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    const std::uint64_t seeds = test::kSanitized ? 2 : 4;  // sanitized.h
+    for (std::uint64_t seed = 1; seed <= seeds; ++seed) {
         CAPTURE(seed);
         Parameters p;
         p.target_vertices = 3000;
@@ -55,13 +57,13 @@ TEST_CASE("topology closed learns the handle of a torus; sphere mode cannot") {
             CHECK(closed.stats.membrane_faces_removed > 0);
         }
     }
-    std::printf("torus, 3000 vertices: the handle learnt for %d of seeds 1-4\n", with_handle);
-    CHECK(with_handle >= 2);
+    std::printf("torus, 3000 vertices: the handle learnt for %d of seeds 1-%d\n", with_handle, int(seeds));
+    CHECK(with_handle >= int(seeds) / 2);
 }
 
 TEST_CASE("topology closed on a sphere sample makes no handle: the sphere mode's mesh, bit for bit") {
     const PointCloud sphere = test::sphere_cloud(8000);
-    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    for (std::uint64_t seed = 1; seed <= (test::kSanitized ? 1u : 3u); ++seed) {
         CAPTURE(seed);
         Parameters p;
         p.target_vertices = 2500;

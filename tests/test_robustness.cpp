@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cloud_fixtures.h"
+#include "sanitized.h"
 #include "engine_checks.h"
 #include "nmesh/error.h"
 #include "nmesh/mesh/mesh.h"
@@ -23,23 +24,9 @@
 using namespace nmesh;
 using nmesh::test::sphere_cloud;
 
-// The sanitizer build of CI also runs the whole-mesh check after every topology operation, which
-// makes a run to n vertices cost O(n^2): the long runs are scaled down there (to 1,500 vertices,
-// a few seconds each). NMESH_ROBUST_LONG_RUN_VERTICES overrides the size of the 200,000 run.
-#if defined(__SANITIZE_ADDRESS__)
-#define NMESH_ROBUST_SANITIZED 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define NMESH_ROBUST_SANITIZED 1
-#endif
-#endif
-
-#ifdef NMESH_ROBUST_SANITIZED
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-
+// The sanitizer build (sanitized.h) scales the long runs down (to 1,500 vertices, a few seconds
+// each). NMESH_ROBUST_LONG_RUN_VERTICES overrides the size of the 200,000 run.
+using nmesh::test::kSanitized;
 #ifndef NMESH_ROBUST_LONG_RUN_VERTICES
 #define NMESH_ROBUST_LONG_RUN_VERTICES (kSanitized ? 1500 : 200000)
 #endif
