@@ -13,6 +13,14 @@
 
 namespace nmesh::test {
 
+// The mesh passes the validator (any genus, boundaries allowed); its check, for the counts.
+inline ManifoldCheck require_valid_mesh(const Mesh& m) {
+    const ManifoldCheck c = check_manifold(m);
+    INFO(c.error);
+    REQUIRE(c.ok);
+    return c;
+}
+
 // The mesh is a closed 2-manifold and the grid and activity index hold exactly its vertices.
 inline void require_engine_valid(const NeuralMesh& engine) {
     const ManifoldCheck c = check_manifold(engine.mesh());

@@ -10,6 +10,7 @@
 #include <set>
 #include <utility>
 
+#include "engine_checks.h"
 #include "mesh_fixtures.h"
 #include "nmesh/error.h"
 #include "nmesh/mesh/mesh.h"
@@ -23,12 +24,7 @@ using nmesh::test::torus_grid;
 
 namespace {
 
-ManifoldCheck require_valid(const Mesh& m) {
-    const ManifoldCheck c = check_manifold(m);
-    INFO(c.error);
-    REQUIRE(c.ok);
-    return c;
-}
+ManifoldCheck require_valid(const Mesh& m) { return test::require_valid_mesh(m); }
 
 // Loops and genus from the triangles alone: boundary edges are those in one triangle, chained
 // through their vertices (one outgoing boundary edge per vertex on a manifold).

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "cloud_fixtures.h"
+#include "engine_checks.h"
 #include "mesh_fixtures.h"
 #include "nmesh/finish/finish.h"
 #include "nmesh/mesh/mesh.h"
@@ -18,12 +19,7 @@ using namespace nmesh;
 
 namespace {
 
-ManifoldCheck require_valid(const Mesh& m) {
-    const ManifoldCheck c = check_manifold(m);
-    INFO(c.error);
-    REQUIRE(c.ok);
-    return c;
-}
+ManifoldCheck require_valid(const Mesh& m) { return test::require_valid_mesh(m); }
 
 double area(const IndexedMesh& m) {
     double a = 0.0;

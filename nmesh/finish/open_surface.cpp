@@ -63,12 +63,7 @@ std::uint32_t remove_marked(Mesh& m, std::vector<char>& marked, const std::vecto
             for (std::uint32_t f : order) {
                 const Face face(f);
                 if (m.is_removed(face)) continue;
-                bool beside = false;
-                for (Halfedge h = m.halfedge(face), s = h;;) {
-                    beside = beside || m.is_boundary(Mesh::twin(h));
-                    if ((h = m.next(h)) == s) break;
-                }
-                if (beside == bool(opening) || !m.can_remove_face(face)) continue;
+                if (m.beside_boundary(face) == bool(opening) || !m.can_remove_face(face)) continue;
                 m.remove_face(face);
                 ++removed;
                 progress = true;

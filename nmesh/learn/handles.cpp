@@ -82,12 +82,7 @@ Halfedge cut_patch(Mesh& m, const Patch& patch, const std::vector<char>& avoid, 
         for (std::uint32_t f : patch.faces) {
             const Face face(f);
             if (m.is_removed(face)) continue;
-            bool beside = false;
-            for (Halfedge h = m.halfedge(face), s = h;;) {
-                beside = beside || m.is_boundary(Mesh::twin(h));
-                if ((h = m.next(h)) == s) break;
-            }
-            if (!beside || !allowed(face)) continue;
+            if (!m.beside_boundary(face) || !allowed(face)) continue;
             note_vertices(face);
             const Vertex gone = m.remove_face(face);
             if (gone.valid()) out.removed_vertices.push_back(gone.idx);
@@ -188,8 +183,7 @@ HandleSearch open_handles(Mesh& mesh, const PointGrid& cloud) {
         }
         if (p.area <= 0.0) continue;
         p.centre = p.centre * float(1.0 / p.area);
-        if (p.faces.size() >= kMinFaces && norm(p.vector_area) >= kMinFlatness * p.area &&
-            p.radius() >= smallest_hole)
+        if (p.faces.size() >= kMinFaces && norm(p.vector_area) >= kMinFlatness * p.area && p.radius() >= smallest_hole)
             patches.push_back(std::move(p));
     }
     out.patches = std::uint32_t(patches.size());

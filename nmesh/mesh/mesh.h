@@ -188,6 +188,11 @@ public:
     bool is_boundary(Halfedge h) const { return n_boundary_ != 0 && he_face_[h.idx] == kInvalidIndex; }
     bool is_boundary(Vertex v) const { return is_boundary(halfedge(v)); }
     bool is_boundary(Edge e) const { return is_boundary(halfedge(e, 0)) || is_boundary(halfedge(e, 1)); }
+    // Whether an edge of f is on a boundary (needs faces).
+    bool beside_boundary(Face f) const {
+        const Halfedge h0 = halfedge(f), h1 = next(h0), h2 = next(h1);
+        return is_boundary(twin(h0)) || is_boundary(twin(h1)) || is_boundary(twin(h2));
+    }
     // The boundary half-edge before h in its loop (the one ending at from(h)). O(valence).
     Halfedge prev_on_boundary(Halfedge h) const;
     // The number of half-edges in h's loop. O(length).
