@@ -416,16 +416,24 @@ TEST_CASE("cancellation stops the run and returns a valid smaller mesh") {
     require_closed_manifold(r.mesh);
 }
 
-TEST_CASE("the finishing stage reports its progress after the learning's, ending at 1") {
+namespace {
+// A reconstruction at 2,000 vertices with every progress report kept.
+Result reconstruct_recording(PointSpan cloud, std::vector<Progress>& reports) {
     Parameters p;
     p.target_vertices = 2000;
     Callbacks cb;
-    std::vector<Progress> reports;
     cb.progress = [&](const Progress& pr) {
         reports.push_back(pr);
         return true;
     };
-    const Result r = reconstruct(bundled_bunny(), p, cb);
+    return reconstruct(cloud, p, cb);
+}
+}  // namespace
+
+TEST_CASE("the finishing stage reports its progress after the learning's, ending at 1") {
+    std::vector<Progress> reports;
+    const PointCloud bunny = bundled_bunny();
+    const Result r = reconstruct_recording(bunny.points, reports);
     REQUIRE(r.stats.finished);
     const auto first = std::find_if(reports.begin(), reports.end(), [](const Progress& x) { return x.finishing; });
     REQUIRE(first != reports.end());
@@ -443,15 +451,8 @@ TEST_CASE("the finishing stage reports its progress after the learning's, ending
 
 TEST_CASE("progress reports the setup apart, and the time left leaves it out") {
     const PointCloud cloud = sphere_cloud(20000);
-    Parameters p;
-    p.target_vertices = 2000;
-    Callbacks cb;
     std::vector<Progress> reports;
-    cb.progress = [&](const Progress& pr) {
-        reports.push_back(pr);
-        return true;
-    };
-    reconstruct(cloud, p, cb);
+    reconstruct_recording(cloud.points, reports);
     REQUIRE(reports.size() >= 2);
     for (const Progress& pr : reports) {
         CHECK(pr.setup_seconds > 0.0);
