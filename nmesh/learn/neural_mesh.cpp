@@ -540,6 +540,12 @@ std::string NeuralMesh::check_consistency() const {
 
 // The handle search needs the face index, which the loop does without; it is built for the
 // search and dropped after it (the mesh is closed again either way).
+void NeuralMesh::reseed(std::uint64_t stream) {
+    // An odd multiplier spreads the streams of one seed apart; Random's own seed expansion
+    // (splitmix64) makes them unrelated.
+    rng_ = Random(params_.seed ^ (stream * 0xd1b54a32d192ed03ull));
+}
+
 std::uint32_t NeuralMesh::learn_handles() {
     if (!cloud_index_) return 0;
     mesh_.build_faces();

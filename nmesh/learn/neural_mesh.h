@@ -83,7 +83,10 @@ public:
     // Moves the nearest-point index over the (transformed) cloud or its sample out (index_cloud),
     // or null when the engine has none (it builds one only for the edge swap); the same
     // conditions as take_mesh().
-    std::unique_ptr<PointGrid> take_cloud_index() { return std::move(cloud_index_); }
+    std::shared_ptr<PointGrid> take_cloud_index() { return std::move(cloud_index_); }
+    // Draws the samples from here on from a new random stream, derived from the seed and
+    // `stream` (for the learning's checkpoints: a retry from a checkpoint takes another path).
+    void reseed(std::uint64_t stream);
     const VertexGrid& grid() const { return grid_; }
     const ActivityIndex& activity() const { return activity_; }
     const RingCache& rings() const { return rings_; }
@@ -119,7 +122,9 @@ private:
     VertexGrid grid_;
     ActivityIndex activity_;
     RingCache rings_;
-    std::unique_ptr<PointGrid> cloud_index_;  // eq. (9); built only for the edge swap
+    // Eq. (9); built only for the edge swap and the handle search. Shared by the copies of the
+    // engine (a copy is a checkpoint to go back to, see reconstruct()): the learning only reads it.
+    std::shared_ptr<PointGrid> cloud_index_;
     Random rng_;
     Vec3 ahead_[2];                  // the next two samples, normalised
     std::uint32_t ahead_index_ = 0;  // the index of the one after them, drawn in advance

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "nmesh/spatial/cloud_sample.h"
@@ -15,6 +16,7 @@
 #include "nmesh/geometry/triangle_intersection.h"
 #include "nmesh/metrics/orientation.h"
 #include "nmesh/learn/neural_mesh.h"
+#include "nmesh/learn/twist_check.h"
 
 namespace nmesh {
 
@@ -150,6 +152,26 @@ private:
     double last_finish_report_ = -1.0;
 };
 
+// Beyond the paper (topology closed and open): the learning's checkpoints against twists.
+// On a coarse mesh a thin part (a horse's leg) is a flat fin of two sheets; samples from one
+// side can pull the other sheet through, and the part comes out inside out, a region that grows
+// with the mesh and that no later polish undoes. At each checkpoint (16, 32, ... vertices and
+// the target, up to kLastCheckpoint) the largest region of faces pointing inward is measured
+// (largest_inward_region: the exact winding-number test of the output check); when it is larger
+// than the tolerance, the learning goes back to the last checkpoint and takes another random
+// path from there (NeuralMesh::reseed), up to kRetries times, after which the attempt with the
+// smallest region goes on. Checkpoints are the engine copied (O(target) memory, twice). The streams are numbered
+// in order, so the same seed still gives the same mesh. docs/algorithm.md has the measurements.
+constexpr std::uint32_t kFirstCheckpoint = 16;
+constexpr std::uint32_t kLastCheckpoint = 4096;
+constexpr std::uint32_t kRetries = 8;
+
+// The largest region of inward faces a checkpoint accepts at n vertices: the learning's
+// scattered folds (the finishing stage removes them) are regions of one or a few faces, and
+// about n / 400 at the checkpoints of the horse that the finishing stage repaired; a twist that
+// stays is 6-8 faces at 256 vertices and doubles with the mesh.
+std::size_t twist_tolerance(std::uint32_t n) { return std::max<std::size_t>(2, n / 256); }
+
 // Steps 1-9 until the target size (or a cancellation), with the snapshots on the way.
 // Choice: a run that cannot reach the target stops with an error instead of going on forever.
 // Vertices that win no signal in a step-8 period are removed, so a cloud of P points carries a
@@ -162,41 +184,91 @@ void learn_to_target(NeuralMesh& engine, std::size_t cloud_size, const Parameter
     constexpr std::uint64_t kStallPeriods = 8;
     std::vector<std::uint32_t> snapshots = callbacks.snapshot_vertices;
     std::sort(snapshots.begin(), snapshots.end());
-    std::size_t next_snapshot = 0;
-    std::uint32_t largest = engine.mesh().n_vertices();
-    std::uint64_t largest_pass = 0;  // removal pass count when `largest` was reached
     // Topology closed or open: the handle search each time the mesh grows by half, from
     // kFirstHandleSearch vertices up to kLastHandleSearchPercent % of the target, so that a handle made has
     // the rest of the growth to learn its wall.
     constexpr std::uint32_t kFirstHandleSearch = 512;
     constexpr std::uint64_t kLastHandleSearchPercent = 50;
-    std::uint32_t next_handle_search = kFirstHandleSearch;
+    // What the loop has done, restored with the engine at a checkpoint.
+    struct Progress {
+        std::size_t next_snapshot = 0;
+        std::uint32_t largest = 0;
+        std::uint64_t largest_pass = 0;  // removal pass count when `largest` was reached
+        std::uint32_t next_handle_search = kFirstHandleSearch;
+    } at;
+    at.largest = engine.mesh().n_vertices();
+    struct Checkpoint {
+        NeuralMesh engine;
+        Progress at;
+        std::size_t inward = 0;
+    };
+    const bool checkpoints = params.topology != Topology::sphere;
+    std::uint32_t next_checkpoint = kFirstCheckpoint;
+    std::optional<Checkpoint> last, best;
+    if (checkpoints) last = Checkpoint{engine, at, 0};
+    std::uint32_t retries = 0;
+    std::uint64_t streams = 0;
+    Statistics counts;  // the checkpoints' counters (a restored engine has its own statistics)
+
     while (engine.mesh().n_vertices() < params.target_vertices) {
         engine.iterate();
-        if (params.topology != Topology::sphere && engine.mesh().n_vertices() >= next_handle_search) {
-            if (100 * std::uint64_t(engine.mesh().n_vertices()) <= kLastHandleSearchPercent * params.target_vertices)
+        const std::uint32_t n = engine.mesh().n_vertices();
+        if (params.topology != Topology::sphere && n >= at.next_handle_search) {
+            if (100 * std::uint64_t(n) <= kLastHandleSearchPercent * params.target_vertices)
                 engine.learn_handles();
-            next_handle_search += next_handle_search / 2;
+            at.next_handle_search += at.next_handle_search / 2;
         }
-        if (engine.mesh().n_vertices() > largest) {
-            largest = engine.mesh().n_vertices();
-            largest_pass = engine.stats().removal_passes;
-        } else if (engine.stats().removal_passes - largest_pass >= kStallPeriods) {
-            throw InputError("the mesh stopped growing at " + std::to_string(largest) + " vertices (" +
-                             std::to_string(engine.stats().removal_passes - largest_pass) +
+        if (n > at.largest) {
+            at.largest = n;
+            at.largest_pass = engine.stats().removal_passes;
+        } else if (engine.stats().removal_passes - at.largest_pass >= kStallPeriods) {
+            throw InputError("the mesh stopped growing at " + std::to_string(at.largest) + " vertices (" +
+                             std::to_string(engine.stats().removal_passes - at.largest_pass) +
                              " removal periods without a larger mesh, " + std::to_string(engine.iteration()) +
                              " iterations): " + std::to_string(cloud_size) + " points cannot carry " +
                              std::to_string(params.target_vertices) + " vertices with Cvs " +
                              std::to_string(params.cvs) + " and Cec " + std::to_string(params.cec) +
-                             "; ask for at most about " + std::to_string(largest) + " vertices, or a larger Cec");
+                             "; ask for at most about " + std::to_string(at.largest) + " vertices, or a larger Cec");
         }
-        while (next_snapshot < snapshots.size() && engine.mesh().n_vertices() >= snapshots[next_snapshot]) {
+        // A checkpoint at each power of two and at the target, up to kLastCheckpoint.
+        if (checkpoints && next_checkpoint <= kLastCheckpoint &&
+            n >= std::min(next_checkpoint, params.target_vertices)) {
+            const std::size_t inward = largest_inward_region(engine.mesh());
+            ++counts.twist_checks;
+            if (inward > twist_tolerance(n) && retries < kRetries) {
+                // Back to the last checkpoint, on another random path.
+                if (!best || inward < best->inward) best = Checkpoint{engine, at, inward};
+                ++retries;
+                ++counts.twist_retries;
+                engine = last->engine;
+                at = last->at;
+                engine.reseed(++streams);
+                continue;
+            }
+            if (inward > twist_tolerance(n)) {
+                // Every retry twisted too: the attempt with the fewest inward faces goes on.
+                if (best && best->inward < inward) {
+                    engine = best->engine;
+                    at = best->at;
+                }
+                ++counts.twists_kept;
+            }
+            best.reset();
+            retries = 0;
+            last = Checkpoint{engine, at, 0};
+            next_checkpoint *= 2;
+        }
+        while (at.next_snapshot < snapshots.size() && engine.mesh().n_vertices() >= snapshots[at.next_snapshot]) {
             if (callbacks.on_snapshot)
-                callbacks.on_snapshot(snapshots[next_snapshot], norm.to_input(engine.mesh().to_indexed()));
-            ++next_snapshot;
+                callbacks.on_snapshot(snapshots[at.next_snapshot], norm.to_input(engine.mesh().to_indexed()));
+            ++at.next_snapshot;
         }
-        if (!reporter.keep_going(false)) return;
+        if (!reporter.keep_going(false)) break;
     }
+    engine.stats().twist_checks = counts.twist_checks;
+    engine.stats().twist_retries = counts.twist_retries;
+    engine.stats().twists_kept = counts.twists_kept;
+    if (reporter.cancelled()) return;
     // Choice: a target of 4 is the initial tetrahedron, reached before any iteration; it still
     // learns, with steps 1-6 for Cvs iterations per vertex (4 Cvs in all), so that it is fitted
     // to the cloud rather than returned as placed. A run to 8 or more vertices takes at least
@@ -227,7 +299,7 @@ void settle(NeuralMesh& engine, const Parameters& params, Reporter& reporter) {
 // input, parameters and seed give the same mesh on any machine: a limit in seconds would make the
 // number of repair rounds, and so the mesh, depend on the machine's speed. Its rounds are bounded
 // (FinishOptions::repair_max_rounds).
-bool finish_stage(const Mesh& learnt, std::unique_ptr<PointGrid>& cloud_index, PointSpan cloud,
+bool finish_stage(const Mesh& learnt, std::shared_ptr<PointGrid>& cloud_index, PointSpan cloud,
                   const Normalization& norm, const Parameters& params, Reporter& reporter, Statistics& stats,
                   Mesh& mesh) {
     if (!cloud_index) {
@@ -246,7 +318,7 @@ bool finish_stage(const Mesh& learnt, std::unique_ptr<PointGrid>& cloud_index, P
 // Topology open (nmesh/finish/open_surface.h): the second sheet of a double layer taken off the
 // learnt mesh (`layers`), or the faces far from the cloud taken off the finished one, against the
 // cloud index of the learning or a new one.
-void open_stage(Mesh& mesh, bool layers, std::unique_ptr<PointGrid>& cloud_index, PointSpan cloud,
+void open_stage(Mesh& mesh, bool layers, std::shared_ptr<PointGrid>& cloud_index, PointSpan cloud,
                 const Normalization& norm, const Parameters& params, Statistics& stats) {
     if (!cloud_index) {
         cloud_index = index_cloud(cloud, norm.transform, norm.bounds, params);
@@ -301,7 +373,7 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
     // does not add to the memory of the grid, activity index and ring cache.
     Mesh learnt = engine->take_mesh();
     const bool open = !result.cancelled && params.topology == Topology::open;
-    std::unique_ptr<PointGrid> cloud_index = finish || open ? engine->take_cloud_index() : nullptr;
+    std::shared_ptr<PointGrid> cloud_index = finish || open ? engine->take_cloud_index() : nullptr;
     engine.reset();
 
     if (open) open_stage(learnt, true, cloud_index, cloud, norm, params, result.stats);

@@ -55,9 +55,10 @@ bool orient_outward(IndexedMesh& mesh) {
     return true;
 }
 
-std::size_t inward_faces(const IndexedMesh& mesh, const TriangleBvh& bvh) {
-    std::size_t inward = 0;
-    for (const auto& t : mesh.triangles) {
+std::vector<std::uint8_t> inward_face_flags(const IndexedMesh& mesh, const TriangleBvh& bvh) {
+    std::vector<std::uint8_t> inward(mesh.triangles.size(), 0);
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+        const auto& t = mesh.triangles[i];
         const Point3 a = to_double(mesh.positions[t[0]]), b = to_double(mesh.positions[t[1]]),
                      c = to_double(mesh.positions[t[2]]);
         const Point3 n = cross3(minus(b, a), minus(c, a));
@@ -78,9 +79,14 @@ std::size_t inward_faces(const IndexedMesh& mesh, const TriangleBvh& bvh) {
             winding += crossing(q, to_double(mesh.positions[u[0]]), to_double(mesh.positions[u[1]]),
                                 to_double(mesh.positions[u[2]]));
         });
-        inward += std::size_t(winding != 0);
+        inward[i] = std::uint8_t(winding != 0);
     }
     return inward;
+}
+
+std::size_t inward_faces(const IndexedMesh& mesh, const TriangleBvh& bvh) {
+    const std::vector<std::uint8_t> inward = inward_face_flags(mesh, bvh);
+    return std::size_t(std::count(inward.begin(), inward.end(), std::uint8_t(1)));
 }
 
 }  // namespace nmesh::metrics_detail

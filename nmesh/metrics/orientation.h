@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "nmesh/geometry/triangle_bvh.h"
 #include "nmesh/indexed_mesh.h"
@@ -19,6 +21,8 @@ double signed_volume(const IndexedMesh& mesh);
 // the sign of its normal's x component, through `bvh` (a hierarchy over `mesh`): O(log F) per
 // face. Meaningful for closed meshes; a face on a fold or in a tangle may count either way.
 std::size_t inward_faces(const IndexedMesh& mesh, const TriangleBvh& bvh);
+// The same test face by face: 1 for a face that points inward, 0 otherwise.
+std::vector<std::uint8_t> inward_face_flags(const IndexedMesh& mesh, const TriangleBvh& bvh);
 
 // Reverses every triangle when the signed volume is negative, so that a closed mesh faces
 // outward; returns whether it did.
