@@ -44,7 +44,7 @@ struct Statistics {
     // reversed to face outward (negative signed volume), crossing triangle pairs by the exact
     // test, faces pointing inward. A valid surface has no crossing pair and no inward face.
     bool reoriented = false;
-    int genus = 0;                    // of the output (-1 should it not be a manifold)
+    int genus = 0;                     // of the output (-1 should it not be a manifold)
     std::uint64_t boundary_loops = 0;  // of the output: 0 for a closed surface
     std::uint64_t crossing_pairs = 0;
     std::uint64_t inward_faces = 0;

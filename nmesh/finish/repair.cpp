@@ -96,7 +96,21 @@ RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fo
     };
     std::vector<Vertex> region, ring_start, seeds;
     std::vector<Vec3> next;
-    for (int round = 0; round < max_rounds && !tracker.clean() && !out_of_time(); ++round) {
+    // The rounds stop when kStallRounds of them in a row found no fewer defects than the fewest
+    // seen (a tangle that smoothing, collapses and splits have stopped undoing), and the repair is
+    // abandoned, and undone, when every kFidelityEvery rounds the estimated Hausdorff distance has
+    // risen by more than kAbandonEdges mean edges: four times what the end allows, so the
+    // pull-back towards the cloud cannot bring it back (an open sheet's two layers, smoothed
+    // into each other; a leg of the coarse horse, shortened). Both only save time on a repair
+    // that would be undone or fail anyway (docs/algorithm.md has the measurements).
+    constexpr int kStallRounds = 12;
+    constexpr int kFidelityEvery = 8;
+    constexpr float kAbandonEdges = 2.0f;
+    std::size_t fewest = tracker.pairs().size() + tracker.folds().size();
+    bool abandoned = false;
+    int fewest_round = 0;
+    for (int round = 0; round < max_rounds && !tracker.clean() && !out_of_time() && round - fewest_round < kStallRounds;
+         ++round) {
         ++result.rounds;
         const std::vector<Face> defective = tracker.defective_faces();
         seeds.clear();
@@ -193,6 +207,15 @@ RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fo
         }
         // 5. Test again.
         tracker.check();
+        if (tracker.pairs().size() + tracker.folds().size() < fewest) {
+            fewest = tracker.pairs().size() + tracker.folds().size();
+            fewest_round = round + 1;
+        }
+        if (cloud && round % kFidelityEvery == kFidelityEvery - 1 &&
+            estimate->after(mesh, tracker.changed_faces()) > estimate->value() + kAbandonEdges * mean_len) {
+            abandoned = true;
+            break;
+        }
         if (on_round) on_round(result.rounds);
     }
     const bool counted = mesh.n_vertices() == target;
@@ -238,13 +261,13 @@ RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fo
         ok = tracker.clean();
     }
     const bool near_cloud =
-        !cloud || estimate->after(mesh, tracker.changed_faces()) <= estimate->value() + 0.5f * mean_len;
+        !abandoned && (!cloud || estimate->after(mesh, tracker.changed_faces()) <= estimate->value() + 0.5f * mean_len);
     // A repair that leaves defects is kept when it leaves fewer intersecting pairs than it found
     // (and no more folded edges), so that the defects it could not remove do not undo those it
     // did; the mesh is put back otherwise.
     const bool better = counted && tracker.pairs().size() < result.intersecting_pairs_before &&
                         tracker.folds().size() <= result.folded_edges_before;
-    if (!near_cloud || !(ok || better)) {
+    if (abandoned || !near_cloud || !(ok || better)) {
         mesh = original;
         result.reverted = true;
         return result;

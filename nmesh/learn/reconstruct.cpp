@@ -160,7 +160,7 @@ private:
 // (largest_inward_region: the exact winding-number test of the output check); when it is larger
 // than the tolerance, the learning goes back to the last checkpoint and takes another random
 // path from there (NeuralMesh::reseed), up to kRetries times, after which the attempt with the
-// smallest region goes on. Checkpoints are the engine copied (O(target) memory, twice). The streams are numbered
+// smallest region goes on and the checkpoints stop. Checkpoints are the engine copied (O(target) memory, twice). The streams are numbered
 // in order, so the same seed still gives the same mesh. docs/algorithm.md has the measurements.
 constexpr std::uint32_t kFirstCheckpoint = 16;
 constexpr std::uint32_t kLastCheckpoint = 4096;
@@ -202,7 +202,7 @@ void learn_to_target(NeuralMesh& engine, std::size_t cloud_size, const Parameter
         Progress at;
         std::size_t inward = 0;
     };
-    const bool checkpoints = params.topology != Topology::sphere;
+    bool checkpoints = params.topology != Topology::sphere;
     std::uint32_t next_checkpoint = kFirstCheckpoint;
     std::optional<Checkpoint> last, best;
     if (checkpoints) last = Checkpoint{engine, at, 0};
@@ -214,8 +214,7 @@ void learn_to_target(NeuralMesh& engine, std::size_t cloud_size, const Parameter
         engine.iterate();
         const std::uint32_t n = engine.mesh().n_vertices();
         if (params.topology != Topology::sphere && n >= at.next_handle_search) {
-            if (100 * std::uint64_t(n) <= kLastHandleSearchPercent * params.target_vertices)
-                engine.learn_handles();
+            if (100 * std::uint64_t(n) <= kLastHandleSearchPercent * params.target_vertices) engine.learn_handles();
             at.next_handle_search += at.next_handle_search / 2;
         }
         if (n > at.largest) {
@@ -252,6 +251,9 @@ void learn_to_target(NeuralMesh& engine, std::size_t cloud_size, const Parameter
                     at = best->at;
                 }
                 ++counts.twists_kept;
+                // A cloud whose learning twists whatever the path (an open sheet, whose closed
+                // mesh is two layers through each other) is not checked again.
+                checkpoints = false;
             }
             best.reset();
             retries = 0;
