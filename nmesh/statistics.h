@@ -25,6 +25,9 @@ struct Statistics {
     std::uint64_t twist_checks = 0;
     std::uint64_t twist_retries = 0;
     std::uint64_t twists_kept = 0;
+    // Outputs of a small target (at most 4,096 vertices) with crossing triangles or inward faces,
+    // learnt again from the last checkpoint before the target.
+    std::uint64_t output_retries = 0;
     // Topology learning (Parameters::topology closed, nmesh/learn/handles.h): searches made,
     // cap-like unsupported patches found over them, handles made, faces cut out for them.
     std::uint64_t topology_checks = 0;

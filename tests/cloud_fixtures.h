@@ -1,6 +1,7 @@
 // Point clouds for the tests: seeded synthetic samples and the real scans.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -38,6 +39,36 @@ inline PointCloud torus_cloud(std::size_t n, float big = 1.0f, float small = 0.3
         if (rng.uniform() * (big + small) > big + small * std::cos(v)) continue;
         const double r = big + small * std::cos(v);
         c.points.push_back({float(r * std::cos(u)), float(r * std::sin(u)), float(small * std::sin(v))});
+    }
+    return c;
+}
+
+// A ball (radius 1) standing on four thin legs (radius 0.06, 1.6 long, with their end discs),
+// sampled at one density, about 14,000 points: thin parts like a horse's legs, where a coarse
+// mesh twists and folds.
+inline PointCloud table_cloud(std::uint64_t seed = 5) {
+    Random rng(seed);
+    PointCloud c;
+    const double two_pi = 6.283185307179586, r = 0.06, length = 1.6, top = -0.6;
+    const double density = 12000.0 / (2.0 * two_pi);  // points per unit area
+    const double legs[4][2] = {{0.45, 0.45}, {0.45, -0.45}, {-0.45, 0.45}, {-0.45, -0.45}};
+    const auto in_leg = [&](double x, double z) {
+        for (const auto& l : legs)
+            if ((x - l[0]) * (x - l[0]) + (z - l[1]) * (z - l[1]) < r * r) return true;
+        return false;
+    };
+    for (const Vec3& p : sphere_cloud(12000, 1.0f, {}, seed).points)
+        if (p.y > 0.0f || !in_leg(p.x, p.z)) c.points.push_back(p);
+    for (const auto& l : legs) {
+        const double bottom = top - length, ball = -std::sqrt(std::max(0.0, 1.0 - l[0] * l[0] - l[1] * l[1]));
+        for (int i = 0; i < int(density * two_pi * r * length); ++i) {
+            const double t = two_pi * rng.uniform(), y = bottom + length * rng.uniform();
+            if (y < ball) c.points.push_back({float(l[0] + r * std::cos(t)), float(y), float(l[1] + r * std::sin(t))});
+        }
+        for (int i = 0; i < int(density * 0.5 * two_pi * r * r); ++i) {
+            const double t = two_pi * rng.uniform(), q = r * std::sqrt(rng.uniform());
+            c.points.push_back({float(l[0] + q * std::cos(t)), float(bottom), float(l[1] + q * std::sin(t))});
+        }
     }
     return c;
 }

@@ -31,6 +31,11 @@ void ActivityIndex::reserve(std::size_t n) {
     if (n > nodes_.size()) nodes_.resize(n);
 }
 
+void ActivityIndex::shrink_ids(std::size_t n) {
+    if (n < nodes_.size()) nodes_.resize(n);
+    nodes_.shrink_to_fit();
+}
+
 double ActivityIndex::checked_counter(double tau, const char* what) {
     if (!(tau >= 0.0 && tau <= kMaxCounter))
         throw ParameterError(std::string("ActivityIndex::") + what + ": counter must be in [0, 1e150], got " +

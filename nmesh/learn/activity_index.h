@@ -78,6 +78,9 @@ public:
 
     // Makes room for ids below `n`, so that adding them allocates nothing. O(n).
     void reserve(std::size_t n);
+    // Gives back the room for ids from `n` on, none of which may be in the index (for a compact
+    // copy; reserve() makes it again). O(n).
+    void shrink_ids(std::size_t n);
 
     // Adds vertex v with counter tau; its last stamp is a new one (later than mark()).
     // O(1) amortised. Preconditions: v != kNone, !contains(v). Throws ParameterError unless

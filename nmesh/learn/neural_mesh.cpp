@@ -540,6 +540,11 @@ std::string NeuralMesh::check_consistency() const {
 
 // The handle search needs the face index, which the loop does without; it is built for the
 // search and dropped after it (the mesh is closed again either way).
+void NeuralMesh::compact() {
+    grid_.shrink_ids(mesh_.vertex_capacity());
+    activity_.shrink_ids(mesh_.vertex_capacity());
+}
+
 void NeuralMesh::reseed(std::uint64_t stream) {
     // An odd multiplier spreads the streams of one seed apart; Random's own seed expansion
     // (splitmix64) makes them unrelated.

@@ -160,17 +160,68 @@ private:
 // (largest_inward_region: the exact winding-number test of the output check); when it is larger
 // than the tolerance, the learning goes back to the last checkpoint and takes another random
 // path from there (NeuralMesh::reseed), up to kRetries times, after which the attempt with the
-// smallest region goes on and the checkpoints stop. Checkpoints are the engine copied (O(target) memory, twice). The streams are numbered
-// in order, so the same seed still gives the same mesh. docs/algorithm.md has the measurements.
+// smallest region goes on and the checkpoints stop. A checkpoint is the engine copied (O(n)
+// memory, twice). The streams are numbered in order, so the same seed still gives the same
+// mesh. docs/algorithm.md has the measurements.
 constexpr std::uint32_t kFirstCheckpoint = 16;
 constexpr std::uint32_t kLastCheckpoint = 4096;
 constexpr std::uint32_t kRetries = 8;
+// A target of at most kLastCheckpoint vertices whose output still has crossing triangles or
+// inward faces is learnt again from the last checkpoint before it, on another stream, up to
+// kOutputRetries times (reconstruct()).
+constexpr std::uint32_t kOutputRetries = 3;
 
 // The largest region of inward faces a checkpoint accepts at n vertices: the learning's
 // scattered folds (the finishing stage removes them) are regions of one or a few faces, and
 // about n / 400 at the checkpoints of the horse that the finishing stage repaired; a twist that
 // stays is 6-8 faces at 256 vertices and doubles with the mesh.
 std::size_t twist_tolerance(std::uint32_t n) { return std::max<std::size_t>(2, n / 256); }
+
+// Topology closed or open: the handle search each time the mesh grows by half, from
+// kFirstHandleSearch vertices up to kLastHandleSearchPercent % of the target, so that a handle
+// made has the rest of the growth to learn its wall.
+constexpr std::uint32_t kFirstHandleSearch = 512;
+constexpr std::uint64_t kLastHandleSearchPercent = 50;
+
+// What the learning loop has done, restored with the engine at a checkpoint.
+struct LoopState {
+    std::size_t next_snapshot = 0;
+    std::uint32_t largest = 0;
+    std::uint64_t largest_pass = 0;  // removal pass count when `largest` was reached
+    std::uint32_t next_handle_search = kFirstHandleSearch;
+    std::uint32_t next_checkpoint = kFirstCheckpoint;
+};
+
+// The checkpoints of one run, kept across the learning and the output check.
+struct Checkpoints {
+    struct Saved {
+        NeuralMesh engine;  // compact (NeuralMesh::compact)
+        LoopState at;
+        std::size_t inward = 0;
+    };
+    bool on = false;
+    LoopState at;                     // the loop's own state
+    std::optional<Saved> last, best;  // the last checkpoint passed; the best failed attempt
+    std::uint32_t retries = 0;        // at the current checkpoint
+    std::uint64_t streams = 0;        // random streams used
+    Statistics counts;                // twist_checks, twist_retries, twists_kept, output_retries
+
+    Checkpoints(const NeuralMesh& engine, const Parameters& params) : on(params.topology != Topology::sphere) {
+        at.largest = engine.mesh().n_vertices();
+        if (on) last = save(engine, 0);
+    }
+    Saved save(const NeuralMesh& engine, std::size_t inward) const {
+        Saved c{engine, at, inward};
+        c.engine.compact();
+        return c;
+    }
+    // Back to `c`, on a new random stream.
+    void restore(NeuralMesh& engine, const Saved& c) {
+        engine = c.engine;
+        at = c.at;
+        engine.reseed(++streams);
+    }
+};
 
 // Steps 1-9 until the target size (or a cancellation), with the snapshots on the way.
 // Choice: a run that cannot reach the target stops with an error instead of going on forever.
@@ -180,36 +231,11 @@ std::size_t twist_tolerance(std::uint32_t n) { return std::max<std::size_t>(2, n
 // size in every step-8 period (Cec * n / Cvs splits per period against a few removals);
 // kStallPeriods periods in a row without one mean the mesh has stopped growing.
 void learn_to_target(NeuralMesh& engine, std::size_t cloud_size, const Parameters& params, const Callbacks& callbacks,
-                     const Normalization& norm, Reporter& reporter) {
+                     const Normalization& norm, Reporter& reporter, Checkpoints& cp) {
     constexpr std::uint64_t kStallPeriods = 8;
     std::vector<std::uint32_t> snapshots = callbacks.snapshot_vertices;
     std::sort(snapshots.begin(), snapshots.end());
-    // Topology closed or open: the handle search each time the mesh grows by half, from
-    // kFirstHandleSearch vertices up to kLastHandleSearchPercent % of the target, so that a handle made has
-    // the rest of the growth to learn its wall.
-    constexpr std::uint32_t kFirstHandleSearch = 512;
-    constexpr std::uint64_t kLastHandleSearchPercent = 50;
-    // What the loop has done, restored with the engine at a checkpoint.
-    struct Progress {
-        std::size_t next_snapshot = 0;
-        std::uint32_t largest = 0;
-        std::uint64_t largest_pass = 0;  // removal pass count when `largest` was reached
-        std::uint32_t next_handle_search = kFirstHandleSearch;
-    } at;
-    at.largest = engine.mesh().n_vertices();
-    struct Checkpoint {
-        NeuralMesh engine;
-        Progress at;
-        std::size_t inward = 0;
-    };
-    bool checkpoints = params.topology != Topology::sphere;
-    std::uint32_t next_checkpoint = kFirstCheckpoint;
-    std::optional<Checkpoint> last, best;
-    if (checkpoints) last = Checkpoint{engine, at, 0};
-    std::uint32_t retries = 0;
-    std::uint64_t streams = 0;
-    Statistics counts;  // the checkpoints' counters (a restored engine has its own statistics)
-
+    LoopState& at = cp.at;
     while (engine.mesh().n_vertices() < params.target_vertices) {
         engine.iterate();
         const std::uint32_t n = engine.mesh().n_vertices();
@@ -230,35 +256,34 @@ void learn_to_target(NeuralMesh& engine, std::size_t cloud_size, const Parameter
                              "; ask for at most about " + std::to_string(at.largest) + " vertices, or a larger Cec");
         }
         // A checkpoint at each power of two and at the target, up to kLastCheckpoint.
-        if (checkpoints && next_checkpoint <= kLastCheckpoint &&
-            n >= std::min(next_checkpoint, params.target_vertices)) {
+        if (cp.on && at.next_checkpoint <= kLastCheckpoint &&
+            n >= std::min(at.next_checkpoint, params.target_vertices)) {
             const std::size_t inward = largest_inward_region(engine.mesh());
-            ++counts.twist_checks;
-            if (inward > twist_tolerance(n) && retries < kRetries) {
+            ++cp.counts.twist_checks;
+            if (inward > twist_tolerance(n) && cp.retries < kRetries) {
                 // Back to the last checkpoint, on another random path.
-                if (!best || inward < best->inward) best = Checkpoint{engine, at, inward};
-                ++retries;
-                ++counts.twist_retries;
-                engine = last->engine;
-                at = last->at;
-                engine.reseed(++streams);
+                if (!cp.best || inward < cp.best->inward) cp.best = cp.save(engine, inward);
+                ++cp.retries;
+                ++cp.counts.twist_retries;
+                cp.restore(engine, *cp.last);
                 continue;
             }
             if (inward > twist_tolerance(n)) {
-                // Every retry twisted too: the attempt with the fewest inward faces goes on.
-                if (best && best->inward < inward) {
-                    engine = best->engine;
-                    at = best->at;
+                // Every retry twisted too: the attempt with the smallest region goes on.
+                if (cp.best && cp.best->inward < inward) {
+                    engine = cp.best->engine;
+                    at = cp.best->at;
                 }
-                ++counts.twists_kept;
+                ++cp.counts.twists_kept;
                 // A cloud whose learning twists whatever the path (an open sheet, whose closed
                 // mesh is two layers through each other) is not checked again.
-                checkpoints = false;
+                cp.on = false;
             }
-            best.reset();
-            retries = 0;
-            last = Checkpoint{engine, at, 0};
-            next_checkpoint *= 2;
+            cp.best.reset();
+            cp.retries = 0;
+            at.next_checkpoint *= 2;
+            // The check at the target keeps the checkpoint before it, for the output check.
+            if (cp.on && n < params.target_vertices) cp.last = cp.save(engine, 0);
         }
         while (at.next_snapshot < snapshots.size() && engine.mesh().n_vertices() >= snapshots[at.next_snapshot]) {
             if (callbacks.on_snapshot)
@@ -267,9 +292,9 @@ void learn_to_target(NeuralMesh& engine, std::size_t cloud_size, const Parameter
         }
         if (!reporter.keep_going(false)) break;
     }
-    engine.stats().twist_checks = counts.twist_checks;
-    engine.stats().twist_retries = counts.twist_retries;
-    engine.stats().twists_kept = counts.twists_kept;
+    engine.stats().twist_checks = cp.counts.twist_checks;
+    engine.stats().twist_retries = cp.counts.twist_retries;
+    engine.stats().twists_kept = cp.counts.twists_kept;
     if (reporter.cancelled()) return;
     // Choice: a target of 4 is the initial tetrahedron, reached before any iteration; it still
     // learns, with steps 1-6 for Cvs iterations per vertex (4 Cvs in all), so that it is fitted
@@ -361,35 +386,54 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
     engine->set_profiling(callbacks.profile);
     Reporter reporter(callbacks, *engine, params.target_vertices, start);
 
-    learn_to_target(*engine, cloud.size(), params, callbacks, norm, reporter);
-    if (!reporter.cancelled()) settle(*engine, params, reporter);
-    const double learning_seconds = reporter.elapsed();
-
+    Checkpoints checkpoints(*engine, params);
+    // A small target keeps the engine through the output check, for kOutputRetries (with the
+    // finishing stage: without it the learnt mesh is wanted as it is).
+    const bool may_retry = checkpoints.on && params.finish && params.target_vertices <= kLastCheckpoint;
     Result result;
-    result.cancelled = reporter.cancelled();
-    result.stats = engine->stats();
-    // The last progress report: the learning is over.
-    if (!result.cancelled) reporter.report(params.settle > 0.0);
-    const bool finish = !result.cancelled && params.finish;
-    // The learnt mesh and the cloud's index leave the engine, which is destroyed: what follows
-    // does not add to the memory of the grid, activity index and ring cache.
-    Mesh learnt = engine->take_mesh();
-    const bool open = !result.cancelled && params.topology == Topology::open;
-    std::shared_ptr<PointGrid> cloud_index = finish || open ? engine->take_cloud_index() : nullptr;
-    engine.reset();
+    double finish_seconds = 0.0;  // the finishing stage's time over the attempts
+    for (std::uint32_t attempt = 0;; ++attempt) {
+        learn_to_target(*engine, cloud.size(), params, callbacks, norm, reporter, checkpoints);
+        if (!reporter.cancelled()) settle(*engine, params, reporter);
+        const double learnt_at = reporter.elapsed();
 
-    if (open) open_stage(learnt, true, cloud_index, cloud, norm, params, result.stats);
-    Mesh finished;
-    result.stats.finished =
-        finish && finish_stage(learnt, cloud_index, cloud, norm, params, reporter, result.stats, finished);
-    if (result.stats.finished) learnt = Mesh();  // freed before the output mesh is built
-    Mesh& output = result.stats.finished ? finished : learnt;
-    if (open) open_stage(output, false, cloud_index, cloud, norm, params, result.stats);
-    cloud_index.reset();
-    result.mesh = norm.to_input(output.to_indexed());
-    result.stats.seconds = learning_seconds;
-    result.stats.seconds_finish = finish ? reporter.elapsed() - learning_seconds : 0.0;
-    check_output(result);
+        result = Result();
+        result.cancelled = reporter.cancelled();
+        result.stats = engine->stats();
+        // The last progress report: the learning is over.
+        if (!result.cancelled) reporter.report(params.settle > 0.0);
+        const bool finish = !result.cancelled && params.finish;
+        // The learnt mesh and the cloud's index leave the engine, which is destroyed: what
+        // follows does not add to the memory of the grid, activity index and ring cache.
+        const bool keep = may_retry && attempt < kOutputRetries && !result.cancelled;
+        Mesh learnt = keep ? engine->mesh() : engine->take_mesh();
+        const bool open = !result.cancelled && params.topology == Topology::open;
+        std::shared_ptr<PointGrid> cloud_index;
+        if (finish || open) cloud_index = keep ? engine->share_cloud_index() : engine->take_cloud_index();
+        if (!keep) engine.reset();
+
+        if (open) open_stage(learnt, true, cloud_index, cloud, norm, params, result.stats);
+        Mesh finished;
+        result.stats.finished =
+            finish && finish_stage(learnt, cloud_index, cloud, norm, params, reporter, result.stats, finished);
+        if (result.stats.finished) learnt = Mesh();  // freed before the output mesh is built
+        Mesh& output = result.stats.finished ? finished : learnt;
+        if (open) open_stage(output, false, cloud_index, cloud, norm, params, result.stats);
+        cloud_index.reset();
+        result.mesh = norm.to_input(output.to_indexed());
+        // The learning's time leaves out the finishing of earlier attempts.
+        const double finishing = finish ? reporter.elapsed() - learnt_at : 0.0;
+        result.stats.seconds = learnt_at - finish_seconds;
+        finish_seconds += finishing;
+        result.stats.seconds_finish = finish_seconds;
+        check_output(result);
+        result.stats.output_retries = checkpoints.counts.output_retries;
+        const bool valid = result.stats.crossing_pairs == 0 && result.stats.inward_faces == 0;
+        if (valid || !keep || !checkpoints.on || !checkpoints.last) break;
+        // The output check failed: the last stretch of the learning again, on another path.
+        ++checkpoints.counts.output_retries;
+        checkpoints.restore(*engine, *checkpoints.last);
+    }
     return result;
 }
 

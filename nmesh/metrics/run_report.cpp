@@ -75,6 +75,7 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << "  \"twist_checks\": " << s.twist_checks << ",\n"
       << "  \"twist_retries\": " << s.twist_retries << ",\n"
       << "  \"twists_kept\": " << s.twists_kept << ",\n"
+      << "  \"output_retries\": " << s.output_retries << ",\n"
       << "  \"topology_checks\": " << s.topology_checks << ",\n"
       << "  \"membrane_patches\": " << s.membrane_patches << ",\n"
       << "  \"handles\": " << s.handles << ",\n"

@@ -89,6 +89,11 @@ void VertexGrid::reserve(std::size_t n) {
     table_.reserve(cap);
 }
 
+void VertexGrid::shrink_ids(std::size_t n) {
+    if (n < slots_.size()) slots_.resize(n);
+    slots_.shrink_to_fit();
+}
+
 void VertexGrid::set_cell_size(double h) {
     h = std::clamp(h, domain_extent_ * kMinCellFraction, domain_extent_);
     cell_size_ = h;

@@ -62,6 +62,9 @@ public:
     // Makes room for ids below `n` and for `n` vertices, so that inserts and moves up to that size
     // allocate nothing (except when a rebuild wants a larger cell table). O(n).
     void reserve(std::size_t n);
+    // Gives back the room for ids from `n` on, none of which may be in the grid (for a compact
+    // copy; reserve() makes it again). O(n).
+    void shrink_ids(std::size_t n);
 
     // Adds vertex `id` at `p`. Amortised O(1).
     // Preconditions: id != kNone, !contains(id), p finite.
