@@ -96,21 +96,15 @@ RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fo
     };
     std::vector<Vertex> region, ring_start, seeds;
     std::vector<Vec3> next;
-    // The rounds stop when kStallRounds of them in a row found no fewer defects than the fewest
-    // seen (a tangle that smoothing, collapses and splits have stopped undoing), and the repair is
-    // abandoned, and undone, when every kFidelityEvery rounds the estimated Hausdorff distance has
-    // risen by more than kAbandonEdges mean edges: four times what the end allows, so the
-    // pull-back towards the cloud cannot bring it back (an open sheet's two layers, smoothed
-    // into each other; a leg of the coarse horse, shortened). Both only save time on a repair
-    // that would be undone or fail anyway (docs/algorithm.md has the measurements).
-    constexpr int kStallRounds = 12;
+    // The repair is abandoned, and undone, when every kFidelityEvery rounds the estimated
+    // Hausdorff distance has risen by more than kAbandonEdges mean edges: four times what the end
+    // allows, so the pull-back towards the cloud cannot bring it back (an open sheet's two layers
+    // smoothed into each other). It only saves the time of a repair that would be undone anyway
+    // (docs/algorithm.md has the measurements).
     constexpr int kFidelityEvery = 8;
     constexpr float kAbandonEdges = 2.0f;
-    std::size_t fewest = tracker.pairs().size() + tracker.folds().size();
     bool abandoned = false;
-    int fewest_round = 0;
-    for (int round = 0; round < max_rounds && !tracker.clean() && !out_of_time() && round - fewest_round < kStallRounds;
-         ++round) {
+    for (int round = 0; round < max_rounds && !tracker.clean() && !out_of_time(); ++round) {
         ++result.rounds;
         const std::vector<Face> defective = tracker.defective_faces();
         seeds.clear();
@@ -207,10 +201,6 @@ RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fo
         }
         // 5. Test again.
         tracker.check();
-        if (tracker.pairs().size() + tracker.folds().size() < fewest) {
-            fewest = tracker.pairs().size() + tracker.folds().size();
-            fewest_round = round + 1;
-        }
         if (cloud && round % kFidelityEvery == kFidelityEvery - 1 &&
             estimate->after(mesh, tracker.changed_faces()) > estimate->value() + kAbandonEdges * mean_len) {
             abandoned = true;

@@ -128,6 +128,8 @@ public:
         progress_.iterations = engine_.iteration();
         progress_.seconds = elapsed();
         progress_.settling = settling;
+        progress_.finishing = false;  // learning (again, after an output retry)
+        progress_.finish_fraction = 0.0;
         return callbacks_.progress(progress_);
     }
     // The finishing stage's progress, at most every 0.1 s and at its end.
