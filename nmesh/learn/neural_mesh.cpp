@@ -53,10 +53,7 @@ NeuralMesh::NeuralMesh(PointSpan points, const BoundingBox& bounds, const Parame
     // The loop names no faces (the swap finds a triangle by its half-edges), so the mesh keeps
     // no face index while it learns: 32 of its 96 bytes per vertex (Mesh::drop_faces).
     mesh_.drop_faces();
-    const std::uint32_t room = params.target_vertices + kReserveSlack;
-    mesh_.reserve(room);
-    grid_.reserve(room);
-    activity_.reserve(room);
+    reserve_target();
     for (std::uint32_t v = 0; v < 4; ++v) {
         grid_.insert(v, mesh_.position(Vertex(v)));
         activity_.add(v, 0.0);
@@ -75,7 +72,6 @@ NeuralMesh::NeuralMesh(PointSpan points, const BoundingBox& bounds, const Parame
     ring_.reserve(64);
     ring2_.reserve(64);
     updated_.resize(16);
-    rings_.reserve(room);
     for (std::uint32_t v = 0; v < 4; ++v) rings_.refresh(mesh_, Vertex(v));
     swap_ring_.reserve(64);
     swap_dm_.reserve(64);
@@ -540,6 +536,14 @@ std::string NeuralMesh::check_consistency() const {
 
 // The handle search needs the face index, which the loop does without; it is built for the
 // search and dropped after it (the mesh is closed again either way).
+void NeuralMesh::reserve_target() {
+    const std::uint32_t room = params_.target_vertices + kReserveSlack;
+    mesh_.reserve(room);
+    grid_.reserve(room);
+    activity_.reserve(room);
+    rings_.reserve(room);
+}
+
 void NeuralMesh::compact() {
     grid_.shrink_ids(mesh_.vertex_capacity());
     activity_.shrink_ids(mesh_.vertex_capacity());

@@ -84,16 +84,17 @@ public:
     // or null when the engine has none (it builds one only for the edge swap); the same
     // conditions as take_mesh().
     std::shared_ptr<PointGrid> take_cloud_index() { return std::move(cloud_index_); }
-    // The same index, left in the engine too (which goes on learning).
-    std::shared_ptr<PointGrid> share_cloud_index() const { return cloud_index_; }
     // Draws the samples from here on from a new random stream, derived from the seed and
     // `stream` (for the learning's checkpoints: a retry from a checkpoint takes another path).
     void reseed(std::uint64_t stream);
     // Gives back the room the engine keeps for the target's vertices in its grid and activity
     // index, so that a copy kept as a checkpoint costs memory for the vertices it has, not for
     // the target. A checkpoint assigned back to the engine finds the room still there (vector
-    // assignment keeps the capacity); any other copy makes it again as it grows. O(n).
+    // assignment keeps the capacity); reserve_target() makes it again in another copy. O(n).
     void compact();
+    // Makes room for the target's vertices (and kReserveSlack more) in the mesh, grid, activity
+    // index and ring cache, so that the learning allocates nothing more (the constructor does it).
+    void reserve_target();
     const VertexGrid& grid() const { return grid_; }
     const ActivityIndex& activity() const { return activity_; }
     const RingCache& rings() const { return rings_; }
