@@ -42,6 +42,9 @@ expect(bad_topology 2 "invalid parameter topology: must be sphere, closed or ope
   ${NMESH} reconstruct ${DATA} -o ${WORK}/x.ply --topology torus)
 expect(topology_summary 0 "genus 0, 0 boundary loops \\(0 handles learnt\\)"
   ${NMESH} reconstruct ${DATA} -o ${WORK}/topology.ply --vertices 600 --topology sphere)
+# The bundled bunny at 1,000 vertices, seed 3, goes back to a checkpoint once (--stats twist_retries).
+expect(retry_summary 0 "learnt again from a checkpoint: 1 retries where part of the mesh had turned inside out"
+  ${NMESH} reconstruct ${DATA} -o ${WORK}/retry.ply --vertices 1000 --seed 3)
 expect(small_target 2 "invalid parameter target_vertices" ${NMESH} reconstruct ${DATA} -o ${WORK}/x.ply --vertices 3)
 expect(output_is_input 2 "must not be the input" ${NMESH} reconstruct ${DATA} -o ${DATA})
 

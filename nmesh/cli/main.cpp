@@ -135,6 +135,11 @@ void print_summary(const Result& r, const std::string& output) {
                  s.seconds > 0 ? s.iterations / s.seconds / 1e6 : 0.0, finishing.c_str());
     std::fprintf(stderr, "nmesh: genus %d, %llu boundary loops (%llu handles learnt)\n", s.genus,
                  (unsigned long long)s.boundary_loops, (unsigned long long)s.handles);
+    if (s.twist_retries > 0 || s.output_retries > 0)
+        std::fprintf(stderr,
+                     "nmesh: learnt again from a checkpoint: %llu retries where part of the mesh had turned "
+                     "inside out, %llu where the output was not valid (the counts above are the kept path's)\n",
+                     (unsigned long long)s.twist_retries, (unsigned long long)s.output_retries);
 }
 
 // evaluate(), with its progress on stderr when it takes long (a cloud of millions of points).
