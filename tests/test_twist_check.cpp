@@ -107,7 +107,10 @@ TEST_CASE("checkpoints: the learnt mesh keeps no inward region above the toleran
     const PointCloud bunny = bundled_bunny();
     std::uint64_t retries = 0;
     std::size_t unchecked_largest = 0;
-    for (std::uint64_t seed : {3, 6, 19}) {
+    // The sanitizer build (sanitized.h) learns seed 3 alone.
+    const std::vector<std::uint64_t> seeds =
+        kSanitized ? std::vector<std::uint64_t>{3} : std::vector<std::uint64_t>{3, 6, 19};
+    for (std::uint64_t seed : seeds) {
         Parameters p;
         p.target_vertices = 1000;
         p.seed = seed;
@@ -124,8 +127,8 @@ TEST_CASE("checkpoints: the learnt mesh keeps no inward region above the toleran
         CHECK(sphere.stats.twist_checks == 0);
         unchecked_largest = std::max(unchecked_largest, largest_inward_region(Mesh::from_indexed(sphere.mesh)));
     }
-    CHECK(retries >= 3);
-    CHECK(unchecked_largest > 3);  // without the checkpoints the test above would fail
+    CHECK(retries >= seeds.size());
+    CHECK(unchecked_largest > 3);  // without the checkpoints the test above would fail (seed 3: 6)
 }
 
 TEST_CASE("a compact checkpoint assigned back learns the same bits; a reseeded one another mesh") {
@@ -162,7 +165,10 @@ TEST_CASE("a small target whose output is not valid is learnt again from the che
     // leg on their first path, seed 1 on every path (found with --stats output_retries).
     const PointCloud table = table_cloud();
     int retried_valid = 0;
-    for (std::uint64_t seed : {4, 7, 1}) {
+    // The sanitizer build learns seed 4 alone.
+    const std::vector<std::uint64_t> seeds =
+        kSanitized ? std::vector<std::uint64_t>{4} : std::vector<std::uint64_t>{4, 7, 1};
+    for (std::uint64_t seed : seeds) {
         Parameters p;
         p.target_vertices = 1000;
         p.seed = seed;
@@ -173,7 +179,7 @@ TEST_CASE("a small target whose output is not valid is learnt again from the che
         // An invalid output only after every retry, or once the checkpoints have stopped.
         if (!valid) CHECK((r.stats.output_retries == 3 || r.stats.twists_kept > 0));
         if (valid && r.stats.output_retries > 0) ++retried_valid;
-        if (seed == 4) {
+        if (seed == 4 && !kSanitized) {
             const Result again = reconstruct(table.points, p);
             CHECK(again.mesh.positions == r.mesh.positions);
             CHECK(again.stats.output_retries == r.stats.output_retries);
@@ -182,5 +188,5 @@ TEST_CASE("a small target whose output is not valid is learnt again from the che
         p.finish = false;
         CHECK(reconstruct(table.points, p).stats.output_retries == 0);
     }
-    CHECK(retried_valid >= 2);
+    CHECK(retried_valid >= (kSanitized ? 1 : 2));
 }
