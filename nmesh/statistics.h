@@ -20,8 +20,8 @@ struct Statistics {
     std::uint64_t moves_shortened = 0;    // step 3 moves shortened: they would fold the winner's fan
     std::uint64_t folds_undone = 0;       // folded winners moved towards their ring's centroid instead
     // The learning's checkpoints against twists (topology closed and open, reconstruct()):
-    // checkpoints passed, retries from the last checkpoint because the mesh had turned partly
-    // inside out, and checkpoints passed with inward faces left after every retry.
+    // checks made, retries from the last checkpoint because the mesh had turned partly inside
+    // out, and checkpoints passed with the region still there after every retry.
     std::uint64_t twist_checks = 0;
     std::uint64_t twist_retries = 0;
     std::uint64_t twists_kept = 0;

@@ -534,8 +534,6 @@ std::string NeuralMesh::check_consistency() const {
     return {};
 }
 
-// The handle search needs the face index, which the loop does without; it is built for the
-// search and dropped after it (the mesh is closed again either way).
 void NeuralMesh::reserve_target() {
     const std::uint32_t room = params_.target_vertices + kReserveSlack;
     mesh_.reserve(room);
@@ -555,6 +553,8 @@ void NeuralMesh::reseed(std::uint64_t stream) {
     rng_ = Random(params_.seed ^ (stream * 0xd1b54a32d192ed03ull));
 }
 
+// The handle search needs the face index, which the loop does without; it is built for the
+// search and dropped after it (the mesh is closed again either way).
 std::uint32_t NeuralMesh::learn_handles() {
     if (!cloud_index_) return 0;
     mesh_.build_faces();
