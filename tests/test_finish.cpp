@@ -673,3 +673,32 @@ TEST_CASE("the finished bunny is a closed manifold without self-intersections or
     CHECK(again.mesh.triangles == r.mesh.triangles);
     CHECK(std::equal(again.mesh.positions.begin(), again.mesh.positions.end(), r.mesh.positions.begin()));
 }
+
+TEST_CASE("a repair that moves the surface off the cloud is given up after its first fidelity check") {
+    // A cap of the unit sphere (z > 0.5) is an open sheet: its closed mesh is two layers through
+    // each other, and smoothing them apart moves the mesh far from the points. Both repairs (of
+    // the regularised and of the learnt mesh) stop at their first check, after 8 rounds, instead
+    // of running their 80 rounds to be undone at the end.
+    Random rng(3);
+    std::vector<Vec3> cap;
+    while (cap.size() < 20000) {
+        const Vec3 p{float(rng.uniform() * 2 - 1), float(rng.uniform() * 2 - 1), float(rng.uniform() * 2 - 1)};
+        const float r2 = squared_norm(p);
+        if (r2 > 1.0f || r2 < 1e-6f) continue;
+        const Vec3 q = p * (1.0f / std::sqrt(r2));
+        if (q.z > 0.5f) cap.push_back(q);
+    }
+    Parameters p;
+    p.target_vertices = 1500;
+    p.finish = false;
+    Mesh m = Mesh::from_indexed(reconstruct(cap, p).mesh);
+    const IndexedMesh before = m.to_indexed();
+    const FinishOptions options;
+    const FinishReport r = finish_mesh(m, cap, options);
+    CHECK(r.intersecting_pairs_before > 100);
+    CHECK(r.repair_reverted);
+    CHECK(r.repair_rounds == 16);
+    CHECK(r.repair_rounds < 2 * std::uint32_t(options.repair_max_rounds));
+    CHECK(r.intersecting_pairs_after == r.intersecting_pairs_before);  // the regularised mesh, unrepaired
+    CHECK(m.n_vertices() == before.positions.size());
+}
