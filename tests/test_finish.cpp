@@ -679,15 +679,9 @@ TEST_CASE("a repair that moves the surface off the cloud is given up after its f
     // each other, and smoothing them apart moves the mesh far from the points. Both repairs (of
     // the regularised and of the learnt mesh) stop at their first check, after 8 rounds, instead
     // of running their 80 rounds to be undone at the end.
-    Random rng(3);
     std::vector<Vec3> cap;
-    while (cap.size() < 20000) {
-        const Vec3 p{float(rng.uniform() * 2 - 1), float(rng.uniform() * 2 - 1), float(rng.uniform() * 2 - 1)};
-        const float r2 = squared_norm(p);
-        if (r2 > 1.0f || r2 < 1e-6f) continue;
-        const Vec3 q = p * (1.0f / std::sqrt(r2));
+    for (const Vec3& q : nmesh::test::sphere_cloud(80000, 1.0f, {}, 3).points)
         if (q.z > 0.5f) cap.push_back(q);
-    }
     Parameters p;
     p.target_vertices = 1500;
     p.finish = false;

@@ -68,6 +68,20 @@ IndexedMesh pushed_through_sphere() {
     return m;
 }
 
+// The seeds a test learns: all of them, or the first alone in the sanitizer build (sanitized.h).
+std::vector<std::uint64_t> seeds_to_learn(std::vector<std::uint64_t> all) {
+    if (kSanitized) all.resize(1);
+    return all;
+}
+
+// Parameters for a run of the bundled clouds at 1,000 vertices.
+Parameters thousand_vertices(std::uint64_t seed) {
+    Parameters p;
+    p.target_vertices = 1000;
+    p.seed = seed;
+    return p;
+}
+
 }  // namespace
 
 TEST_CASE("the largest inward region: none on a sphere, the inside-out bag of a pushed-through one") {
@@ -107,13 +121,9 @@ TEST_CASE("checkpoints: the learnt mesh keeps no inward region above the toleran
     const PointCloud bunny = bundled_bunny();
     std::uint64_t retries = 0;
     std::size_t unchecked_largest = 0;
-    // The sanitizer build (sanitized.h) learns seed 3 alone.
-    const std::vector<std::uint64_t> seeds =
-        kSanitized ? std::vector<std::uint64_t>{3} : std::vector<std::uint64_t>{3, 6, 19};
+    const std::vector<std::uint64_t> seeds = seeds_to_learn({3, 6, 19});
     for (std::uint64_t seed : seeds) {
-        Parameters p;
-        p.target_vertices = 1000;
-        p.seed = seed;
+        Parameters p = thousand_vertices(seed);
         p.finish = false;
         const Result closed = reconstruct(bunny.points, p);
         retries += closed.stats.twist_retries;
@@ -165,13 +175,8 @@ TEST_CASE("a small target whose output is not valid is learnt again from the che
     // leg on their first path, seed 1 on every path (found with --stats output_retries).
     const PointCloud table = table_cloud();
     int retried_valid = 0;
-    // The sanitizer build learns seed 4 alone.
-    const std::vector<std::uint64_t> seeds =
-        kSanitized ? std::vector<std::uint64_t>{4} : std::vector<std::uint64_t>{4, 7, 1};
-    for (std::uint64_t seed : seeds) {
-        Parameters p;
-        p.target_vertices = 1000;
-        p.seed = seed;
+    for (std::uint64_t seed : seeds_to_learn({4, 7, 1})) {
+        Parameters p = thousand_vertices(seed);
         const Result r = reconstruct(table.points, p);
         INFO("seed " << seed);
         CHECK(r.mesh.positions.size() == 1000);
