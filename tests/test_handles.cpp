@@ -4,6 +4,8 @@
 #include <doctest/doctest.h>
 
 #include <cstdio>
+#include <set>
+#include <vector>
 
 #include "cloud_fixtures.h"
 #include "sanitized.h"
@@ -82,6 +84,32 @@ TEST_CASE("topology closed on a sphere sample makes no handle: the sphere mode's
         for (std::size_t i = 0; same && i < a.mesh.positions.size(); ++i)
             same = a.mesh.positions[i] == b.mesh.positions[i];
         CHECK(same);
+    }
+}
+
+TEST_CASE("the handle search runs each time the mesh grows by half from 512 vertices, and at half the target") {
+    // The schedule counted by brute force: 512, 768, 1152, 1728, ... up to half the target, and
+    // half the target itself when that step passes it (a bore shows on the rocker arm at about
+    // 1,700 vertices: a target of 3,000 searched at 1,152 last without it).
+    const auto searches = [](std::uint32_t target) {
+        std::set<std::uint32_t> sizes;
+        for (std::uint32_t at = 512; at <= target / 2; at += at / 2) sizes.insert(at);
+        if (target / 2 >= 512) sizes.insert(target / 2);
+        return std::uint64_t(sizes.size());
+    };
+    CHECK(searches(1100) == 2);  // 512, 550
+    CHECK(searches(3000) == 4);  // 512, 768, 1152, 1500
+    CHECK(searches(1000) == 0);  // 500 is below the first search
+    const PointCloud sphere = test::sphere_cloud(8000);
+    for (const std::uint32_t target : test::kSanitized ? std::vector<std::uint32_t>{1100}
+                                                       : std::vector<std::uint32_t>{1000, 1100, 3000}) {
+        CAPTURE(target);
+        Parameters p;
+        p.target_vertices = target;
+        p.finish = false;
+        const Result r = reconstruct(sphere, p);
+        CHECK(r.stats.twist_retries == 0);  // a retry would take back the searches after its checkpoint
+        CHECK(r.stats.topology_checks == searches(target));
     }
 }
 

@@ -182,8 +182,9 @@ constexpr std::uint32_t kOutputRetries = 3;
 std::size_t twist_tolerance(std::uint32_t n) { return std::max<std::size_t>(2, n / 256); }
 
 // Topology closed or open: the handle search each time the mesh grows by half, from
-// kFirstHandleSearch vertices up to kLastHandleSearchPercent % of the target, so that a handle
-// made has the rest of the growth to learn its wall.
+// kFirstHandleSearch vertices up to kLastHandleSearchPercent % of the target, and at that size
+// itself (where the steps stop short of it), so that a handle made has the rest of the growth to
+// learn its wall.
 constexpr std::uint32_t kFirstHandleSearch = 512;
 constexpr std::uint64_t kLastHandleSearchPercent = 50;
 
@@ -244,8 +245,10 @@ void learn_to_target(NeuralMesh& engine, std::size_t cloud_size, const Parameter
         engine.iterate();
         const std::uint32_t n = engine.mesh().n_vertices();
         if (params.topology != Topology::sphere && n >= at.next_handle_search) {
-            if (100 * std::uint64_t(n) <= kLastHandleSearchPercent * params.target_vertices) engine.learn_handles();
-            at.next_handle_search += at.next_handle_search / 2;
+            const std::uint32_t last = std::uint32_t(kLastHandleSearchPercent * params.target_vertices / 100);
+            if (n <= last) engine.learn_handles();
+            const std::uint32_t next = at.next_handle_search + at.next_handle_search / 2;
+            at.next_handle_search = at.next_handle_search < last && next > last ? last : next;
         }
         if (n > at.largest) {
             at.largest = n;
