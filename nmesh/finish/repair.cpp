@@ -60,7 +60,7 @@ Vertex split_edge(Mesh& mesh, Halfedge h) {
 //   4. smooths: the corners of the defective triangles move halfway to the mean of their
 //      neighbours (twice, Jacobi), the `rings` rings around them the same but only tangentially,
 //      so that the surface around a defect does not shrink; the rings grow by one every fourth
-//      round;
+//      round, up to kMaxRings;
 //   5. tests the changed triangles again (DefectTracker).
 // Once no defect is left, the vertices the smoothing moved are pulled back towards the cloud
 // (kRefitIterations rounds of relaxed_position), each move kept only where it creates no defect.
@@ -102,6 +102,10 @@ RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fo
     // smoothed into each other). It only saves the time of a repair that would be undone anyway
     // (docs/algorithm.md has the measurements).
     constexpr int kFidelityEvery = 8;
+    // The rings of tangential smoothing round the defects grow to at most kMaxRings: a defect
+    // that 6 rings do not untangle was not untangled by 18 in the sweep, and the region's cost
+    // grows with the square of its rings (docs/algorithm.md).
+    constexpr int kMaxRings = 6;
     constexpr float kAbandonEdges = 2.0f;
     bool abandoned = false;
     for (int round = 0; round < max_rounds && !tracker.clean() && !out_of_time(); ++round) {
@@ -165,7 +169,7 @@ RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fo
         for (const Face f : defective)
             if (!mesh.is_removed(f))
                 for (const Vertex v : corners(mesh, f)) add(v, 2);
-        const int rings = 1 + round / 4;
+        const int rings = std::min(1 + round / 4, kMaxRings);
         for (int r = 0; r < rings; ++r) {
             ring_start = region;
             for (const Vertex v : ring_start) mesh.for_each_neighbor(v, [&](Vertex u) { add(u, 1); });
