@@ -11,6 +11,7 @@
 
 #include "cloud_fixtures.h"
 #include "mesh_fixtures.h"
+#include "sanitized.h"
 #include "nmesh/finish/finish.h"
 #include "nmesh/mesh/mesh.h"
 #include "nmesh/mesh/mesh_check.h"
@@ -502,11 +503,11 @@ TEST_CASE("the stage keeps a closed manifold with the same vertex count on sever
     REQUIRE(bunny.size() == 35947);
     {
         Parameters p;
-        p.target_vertices = 3000;
-        cases.push_back({"bunny, 3000 vertices", bunny, learnt_mesh(bunny, p)});
+        p.target_vertices = test::kSanitized ? 1500 : 3000;  // sanitized.h
+        cases.push_back({"bunny", bunny, learnt_mesh(bunny, p)});
         p.alpha_w = 0.01;  // the paper's worst setting
         p.alpha_n = 0.002;
-        cases.push_back({"bunny, 3000 vertices, worst setting", bunny, learnt_mesh(bunny, p)});
+        cases.push_back({"bunny, worst setting", bunny, learnt_mesh(bunny, p)});
     }
     for (Case& c : cases) {
         INFO(c.name);
@@ -658,13 +659,13 @@ TEST_CASE("the finished bunny is a closed manifold without self-intersections or
     const PointCloud bunny = bundled_bunny();
     REQUIRE(bunny.size() == 35947);
     Parameters p;
-    p.target_vertices = 5000;
+    p.target_vertices = test::kSanitized ? 2000 : 5000;  // sanitized.h
     const Result r = reconstruct(bunny, p);
     require_valid(Mesh::from_indexed(r.mesh));
-    CHECK(r.mesh.positions.size() == 5000);
+    CHECK(r.mesh.positions.size() == p.target_vertices);
     const QualityReport q = evaluate(bunny.points, r.mesh);
-    std::printf("bunny 5k finished: DM %.6f, %.2f%% under 10 degrees, %zu self-intersections, p2s %.4f%%\n", q.dm_x_t,
-                100 * q.share_under_10deg, q.self_intersections, 100 * q.p2s_mean_rel);
+    std::printf("bunny %u finished: DM %.6f, %.2f%% under 10 degrees, %zu self-intersections, p2s %.4f%%\n",
+                p.target_vertices, q.dm_x_t, 100 * q.share_under_10deg, q.self_intersections, 100 * q.p2s_mean_rel);
     CHECK(q.self_intersections == 0);
     CHECK(q.share_under_10deg < 0.01);
     CHECK(q.genus == 0);
