@@ -102,11 +102,11 @@ RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fo
     // smoothed into each other). It only saves the time of a repair that would be undone anyway
     // (docs/algorithm.md has the measurements).
     constexpr int kFidelityEvery = 8;
-    // The rings of tangential smoothing round the defects grow to at most kMaxRings: a defect
-    // that 6 rings do not untangle was not untangled by 18 in the sweep, and the region's cost
-    // grows with the square of its rings (docs/algorithm.md).
-    constexpr int kMaxRings = 6;
     constexpr float kAbandonEdges = 2.0f;
+    // The rings of tangential smoothing round the defects grow to at most kMaxRings (round 20):
+    // with 18 (round 70) the validity sweep had its defects in the same runs, and a round's cost
+    // grows with the region (docs/algorithm.md).
+    constexpr int kMaxRings = 6;
     bool abandoned = false;
     for (int round = 0; round < max_rounds && !tracker.clean() && !out_of_time(); ++round) {
         ++result.rounds;
