@@ -241,14 +241,14 @@ void learn_to_target(NeuralMesh& engine, std::size_t cloud_size, const Parameter
     std::vector<std::uint32_t> snapshots = callbacks.snapshot_vertices;
     std::sort(snapshots.begin(), snapshots.end());
     LoopState& at = cp.at;
+    const std::uint32_t last_search = std::uint32_t(kLastHandleSearchPercent * params.target_vertices / 100);
     while (engine.mesh().n_vertices() < params.target_vertices) {
         engine.iterate();
         const std::uint32_t n = engine.mesh().n_vertices();
         if (params.topology != Topology::sphere && n >= at.next_handle_search) {
-            const std::uint32_t last = std::uint32_t(kLastHandleSearchPercent * params.target_vertices / 100);
-            if (n <= last) engine.learn_handles();
+            if (n <= last_search) engine.learn_handles();
             const std::uint32_t next = at.next_handle_search + at.next_handle_search / 2;
-            at.next_handle_search = at.next_handle_search < last && next > last ? last : next;
+            at.next_handle_search = at.next_handle_search < last_search && next > last_search ? last_search : next;
         }
         if (n > at.largest) {
             at.largest = n;
