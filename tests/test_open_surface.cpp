@@ -1,17 +1,24 @@
 // Topology open (nmesh/finish/open_surface.h) and boundaries in the finishing stage: a scan with
 // a missing cap gets one boundary loop there and none where there are points; a closed scan stays
 // closed; the finishing stage keeps a boundary where it is; a one-sided sheet loses one of the
-// two layers a closed mesh wraps round it.
+// two layers a closed mesh wraps round it; cut_faces leaves a manifold with boundary whatever is
+// marked.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <tuple>
+#include <vector>
 
 #include "cloud_fixtures.h"
 #include "engine_checks.h"
 #include "mesh_fixtures.h"
 #include "nmesh/finish/finish.h"
+#include "nmesh/finish/open_surface.h"
 #include "nmesh/mesh/mesh.h"
 #include "nmesh/mesh/mesh_check.h"
+#include "nmesh/metrics.h"
 #include "nmesh/reconstruct.h"
 #include "sanitized.h"
 
@@ -132,4 +139,162 @@ TEST_CASE("topology open on a one-sided sheet takes one of the two layers off") 
     p.topology = Topology::closed;
     const Result closed = reconstruct(sheet, p);
     CHECK(open.stats.crossing_pairs < closed.stats.crossing_pairs);
+}
+
+namespace {
+
+// The connected pieces of a triangle set (through shared vertices), as face counts.
+std::vector<std::size_t> piece_sizes(const IndexedMesh& m) {
+    std::vector<std::uint32_t> parent(m.positions.size());
+    for (std::uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
+    auto root = [&](std::uint32_t x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    };
+    for (const auto& t : m.triangles) {
+        parent[root(t[1])] = root(t[0]);
+        parent[root(t[2])] = root(t[0]);
+    }
+    std::vector<std::size_t> count(m.positions.size(), 0);
+    for (const auto& t : m.triangles) ++count[root(t[0])];
+    std::vector<std::size_t> out;
+    for (std::size_t c : count)
+        if (c > 0) out.push_back(c);
+    return out;
+}
+
+// The triangles as position triples, rotated to start at their smallest corner (comparable
+// across re-indexing).
+std::vector<std::array<float, 9>> triangle_set(const IndexedMesh& m) {
+    std::vector<std::array<float, 9>> out;
+    for (auto t : m.triangles) {
+        auto less = [&](std::uint32_t a, std::uint32_t b) {
+            const Vec3 p = m.positions[a], q = m.positions[b];
+            return std::tie(p.x, p.y, p.z) < std::tie(q.x, q.y, q.z);
+        };
+        while (less(t[1], t[0]) || less(t[2], t[0])) t = {t[1], t[2], t[0]};
+        std::array<float, 9> k{};
+        for (int i = 0; i < 3; ++i) {
+            const Vec3 p = m.positions[t[std::size_t(i)]];
+            k[std::size_t(3 * i)] = p.x, k[std::size_t(3 * i + 1)] = p.y, k[std::size_t(3 * i + 2)] = p.z;
+        }
+        out.push_back(k);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("cut_faces leaves a manifold with boundary whatever is marked, and never keeps a marked face") {
+    Mesh m = Mesh::from_indexed(test::icosphere(3));
+    m.build_faces();
+    const auto all = triangle_set(m.to_indexed());
+    Random rng(17);
+    for (int trial = 0; trial < (test::kSanitized ? 40 : 200); ++trial) {
+        // Random discs round random vertices, and scattered single faces: strips, islands and
+        // fans meeting at a corner all occur.
+        std::vector<char> marked(m.face_capacity(), 0);
+        const int discs = 1 + int(rng.below(4));
+        for (int d = 0; d < discs; ++d) {
+            const Vec3 c = m.position(Vertex(rng.below(m.vertex_capacity())));
+            const float r = 0.2f + 0.6f * float(rng.uniform());
+            for (std::uint32_t f = 0; f < m.face_capacity(); ++f)
+                if (distance(m.position(m.from(m.halfedge(Face(f)))), c) < r) marked[f] = 1;
+        }
+        for (int s = 0; s < int(rng.below(30)); ++s) marked[rng.below(m.face_capacity())] = 1;
+        std::uint32_t removed = 0;
+        const IndexedMesh out = cut_faces(m, marked, removed);
+        CAPTURE(trial);
+        CHECK(removed + out.triangles.size() == m.n_faces());
+        const MeshTopology t = mesh_topology(out);
+        CHECK(t.manifold);  // no bow-tie, no edge of three faces
+        CHECK(t.isolated_vertices == 0);
+        for (std::size_t size : piece_sizes(out)) CHECK(size >= kOpenMinFaces);
+        // Every kept triangle is an unmarked one of the mesh.
+        const auto kept = triangle_set(out);
+        CHECK(std::includes(all.begin(), all.end(), kept.begin(), kept.end()));
+        IndexedMesh marked_faces = m.to_indexed();
+        marked_faces.triangles.clear();
+        for (std::uint32_t f = 0; f < m.face_capacity(); ++f) {
+            if (!marked[f]) continue;
+            const Halfedge h = m.halfedge(Face(f));
+            marked_faces.triangles.push_back({m.from(h).idx, m.to(h).idx, m.to(m.next(h)).idx});
+        }
+        const auto marked_set = triangle_set(marked_faces);
+        for (const auto& k : kept) CHECK_FALSE(std::binary_search(marked_set.begin(), marked_set.end(), k));
+    }
+}
+
+TEST_CASE("cut_faces: a bow-tie is closed off, a band leaves two pieces, nothing marked is the mesh") {
+    Mesh m = Mesh::from_indexed(test::icosphere(3));
+    m.build_faces();
+    std::uint32_t removed = 0;
+    CHECK(cut_faces(m, std::vector<char>(m.face_capacity(), 0), removed).triangles == m.to_indexed().triangles);
+    CHECK(removed == 0);
+    // Every face round vertex 0 but two opposite ones: two kept fans would meet at vertex 0.
+    std::vector<Face> around;
+    m.for_each_face_around(Vertex(0), [&](Face f) { around.push_back(f); });
+    REQUIRE(around.size() >= 5);
+    std::vector<char> marked(m.face_capacity(), 0);
+    for (std::size_t i = 0; i < around.size(); ++i)
+        if (i != 0 && i != around.size() / 2) marked[around[i].idx] = 1;
+    IndexedMesh out = cut_faces(m, marked, removed);
+    CHECK(mesh_topology(out).manifold);
+    CHECK(mesh_topology(out).boundary_loops == 1);
+    CHECK(removed == around.size() - 1);  // one of the two kept faces went with the others
+    // A band round the equator: the two caps stay, as two pieces with a rim each.
+    std::fill(marked.begin(), marked.end(), 0);
+    for (std::uint32_t f = 0; f < m.face_capacity(); ++f)
+        if (std::fabs(m.position(m.from(m.halfedge(Face(f)))).z) < 0.2f) marked[f] = 1;
+    out = cut_faces(m, marked, removed);
+    const MeshTopology t = mesh_topology(out);
+    CHECK(t.manifold);
+    CHECK(t.components == 2);
+    CHECK(t.boundary_loops == 2);
+    CHECK(t.genus == 0);
+}
+
+TEST_CASE("cut_unsupported opens a hole the cloud's rim surrounds, and keeps a bump the data does not explain") {
+    Mesh m = Mesh::from_indexed(test::icosphere(4));
+    m.build_faces();
+    const PointCloud ball = test::sphere_cloud(30000, 1.0f, {}, 21);
+    // A scan without its cap: the rim at z = 0.8 surrounds the faces over the cap.
+    std::vector<Vec3> capless;
+    for (const Vec3& p : ball.points)
+        if (p.z < 0.8f) capless.push_back(p);
+    OpenReport report;
+    const IndexedMesh open = cut_unsupported(m, PointGrid(capless), report);
+    const MeshTopology t = mesh_topology(open);
+    CHECK(report.removed_unsupported > 0);
+    CHECK(t.manifold);
+    CHECK(t.components == 1);
+    CHECK(t.boundary_loops == 1);
+    CHECK(t.genus == 0);
+    CHECK(report.rim_share < kViewRimShare);  // a closed object with a hole, not a partial view
+    // The hole is the cap's: no face kept above the cap's middle, none removed well below the rim.
+    for (const auto& tri : open.triangles)
+        CHECK((open.positions[tri[0]].z + open.positions[tri[1]].z + open.positions[tri[2]].z) / 3.0f < 0.95f);
+    std::size_t below = 0, kept_below = 0;
+    for (std::uint32_t f = 0; f < m.face_capacity(); ++f)
+        below += std::size_t(m.position(m.from(m.halfedge(Face(f)))).z < 0.6f);
+    for (const auto& tri : open.triangles) kept_below += std::size_t(open.positions[tri[0]].z < 0.6f);
+    CHECK(kept_below == below);
+
+    // The whole sphere scanned, the mesh with a bump far from every point: no rim round it, so it
+    // stays (a defect of the reconstruction, not a hole in the scan).
+    Mesh bumped = m;
+    for (std::uint32_t v = 0; v < bumped.vertex_capacity(); ++v) {
+        const Vec3 p = bumped.position(Vertex(v));
+        if (p.z > 0.9f) bumped.set_position(Vertex(v), p * 1.3f);
+    }
+    OpenReport closed_report;
+    const IndexedMesh kept = cut_unsupported(bumped, PointGrid(ball.points), closed_report);
+    CHECK(closed_report.unsupported_faces == 0);
+    CHECK(closed_report.removed_unsupported == 0);
+    CHECK(kept.triangles == bumped.to_indexed().triangles);
+    // The same bump over the capless scan opens: the rim is there.
+    OpenReport bump_report;
+    const IndexedMesh bump_open = cut_unsupported(bumped, PointGrid(capless), bump_report);
+    CHECK(mesh_topology(bump_open).boundary_loops == 1);
 }

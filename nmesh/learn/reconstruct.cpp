@@ -349,20 +349,14 @@ bool finish_stage(const Mesh& learnt, std::shared_ptr<PointGrid>& cloud_index, P
     return mesh.n_vertices() == learnt.n_vertices();
 }
 
-// Topology open (nmesh/finish/open_surface.h): the second sheet of a double layer taken off the
-// learnt mesh (`layers`), or the faces far from the cloud taken off the finished one, against the
-// cloud index of the learning or a new one.
-void open_stage(Mesh& mesh, bool layers, std::shared_ptr<PointGrid>& cloud_index, PointSpan cloud,
-                const Normalization& norm, const Parameters& params, Statistics& stats) {
+// Topology open (nmesh/finish/open_surface.h): the cloud index of the learning, or a new one.
+const PointGrid& open_index(std::shared_ptr<PointGrid>& cloud_index, PointSpan cloud, const Normalization& norm,
+                            const Parameters& params, Statistics& stats) {
     if (!cloud_index) {
         cloud_index = index_cloud(cloud, norm.transform, norm.bounds, params);
         record_index(*cloud_index, stats);
     }
-    mesh.build_faces();
-    if (layers)
-        stats.layer_faces_removed = remove_double_layers(mesh, *cloud_index).removed_layer;
-    else
-        stats.open_faces_removed = open_unsupported(mesh, *cloud_index).removed_unsupported;
+    return *cloud_index;
 }
 
 // Every closed output faces outward (its triangles reversed when the learning turned the whole
@@ -421,15 +415,29 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
         std::shared_ptr<PointGrid> cloud_index = finish || open ? engine->take_cloud_index() : nullptr;
         engine.reset();
 
-        if (open) open_stage(learnt, true, cloud_index, cloud, norm, params, result.stats);
+        // Topology open: the second sheet of a double layer off the learnt mesh.
+        if (open) {
+            learnt.build_faces();
+            result.stats.layer_faces_removed =
+                remove_double_layers(learnt, open_index(cloud_index, cloud, norm, params, result.stats)).removed_layer;
+        }
         Mesh finished;
         result.stats.finished =
             finish && finish_stage(learnt, cloud_index, cloud, norm, params, reporter, result.stats, finished);
         if (result.stats.finished) learnt = Mesh();  // freed before the output mesh is built
         Mesh& output = result.stats.finished ? finished : learnt;
-        if (open) open_stage(output, false, cloud_index, cloud, norm, params, result.stats);
+        // Topology open: the faces far from the cloud's data off the output (it may then have
+        // several components, which the half-edge mesh does not hold).
+        if (open) {
+            output.build_faces();
+            OpenReport cut;
+            result.mesh = cut_unsupported(output, open_index(cloud_index, cloud, norm, params, result.stats), cut);
+            result.stats.open_faces_removed = cut.removed_unsupported;
+        } else {
+            result.mesh = output.to_indexed();
+        }
         cloud_index.reset();
-        result.mesh = norm.to_input(output.to_indexed());
+        result.mesh = norm.to_input(result.mesh);
         // The learning's time leaves out the finishing of earlier attempts.
         const double finishing = finish ? reporter.elapsed() - learnt_at : 0.0;
         result.stats.seconds = learnt_at - finish_seconds;
