@@ -1,10 +1,11 @@
 // bench/validity_sweep.cpp — every cloud x seed x size, with and without the finishing stage: is
 // each output a valid surface? Per run: the crossing triangle pairs (the exact test), the signed
-// volume, the share of faces pointing inward, the Hausdorff distance and the time. Writes one CSV
-// row per run and a markdown summary per cloud, size and stage setting.
+// volume, the share of faces pointing inward, the genus, boundary loops and components, the
+// Hausdorff distance and the time. Writes one CSV row per run and a markdown summary per cloud,
+// size and stage setting.
 //
 //   validity_sweep CLOUD... --csv OUT.csv --md OUT.md [--seeds 1-20] [--sizes 1000,3000,5000,10000,30000]
-//                  [--finish both|on|off] [--topology sphere|closed] [--check] [--exempt NAME,...]
+//                  [--finish both|on|off] [--topology sphere|closed|open] [--check] [--exempt NAME,...]
 //
 // A size is run on a cloud only when the cloud has at least 1.1 points per vertex (fewer cannot
 // carry it with the paper's parameters: the mesh stops growing). --check exits with status 1 if
@@ -42,6 +43,7 @@ struct Run {
     double seconds_learning = 0.0, seconds_finish = 0.0;
     bool closed = false;
     int genus = -1;
+    std::size_t boundary_loops = 0, components = 0;
 };
 
 std::vector<std::uint64_t> parse_range(const std::string& text) {
@@ -89,6 +91,8 @@ Run run_one(const std::string& name, const nmesh::PointCloud& cloud, std::uint32
         r.seconds_finish = res.stats.seconds_finish;
         r.closed = q.closed;
         r.genus = q.genus;
+        r.boundary_loops = q.boundary_loops;
+        r.components = q.components;
     } catch (const nmesh::Error& e) {
         r.error = e.what();
     }
@@ -161,12 +165,13 @@ int main(int argc, char** argv) {
     {
         std::ofstream out(csv);
         out << "cloud,vertices,seed,finish,crossing_pairs,signed_volume,inward_share,hausdorff_rel,closed,genus,"
-               "seconds_learning,seconds_finish,error\n";
+               "boundary_loops,components,seconds_learning,seconds_finish,error\n";
         out.precision(6);
         for (const Run& r : runs)
             out << r.cloud << ',' << r.vertices << ',' << r.seed << ',' << (r.finish ? 1 : 0) << ',' << r.crossing_pairs
                 << ',' << r.volume << ',' << r.inward_share << ',' << r.hausdorff_rel << ',' << (r.closed ? 1 : 0)
-                << ',' << r.genus << ',' << r.seconds_learning << ',' << r.seconds_finish << ",\"" << r.error << "\"\n";
+                << ',' << r.genus << ',' << r.boundary_loops << ',' << r.components << ',' << r.seconds_learning << ','
+                << r.seconds_finish << ",\"" << r.error << "\"\n";
     }
     // Summary per cloud, size and stage setting, in the order run.
     std::vector<std::tuple<std::string, std::uint32_t, bool>> keys;
@@ -183,14 +188,15 @@ int main(int argc, char** argv) {
            "off it along its normal has a nonzero winding number; Hausdorff distance in % of the cloud's "
            "bounding-box diagonal; the largest ratio of the finishing stage's time to the learning's.\n\n";
     out << "| cloud | vertices | stage | runs | with crossings | most pairs | with inward faces | most inward | "
-           "negative volume | genus (runs) | Hausdorff median | max | max / median | finish / learning (max) | "
-           "errors |\n"
-        << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+           "negative volume | genus (runs) | with boundary | most loops | most components | Hausdorff median | max | "
+           "max / median | finish / learning (max) | errors |\n"
+        << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     bool failed = false;
     char buf[512];
     for (const auto& key : keys) {
         const auto& g = groups[key];
         std::size_t crossing = 0, most = 0, inward = 0, negative = 0, errors = 0;
+        std::size_t bounded = 0, most_loops = 0, most_components = 0;
         double most_inward = 0.0, finish_ratio = 0.0;
         std::vector<double> h;
         std::map<int, int> genera;  // genus -> runs
@@ -205,6 +211,9 @@ int main(int argc, char** argv) {
             most_inward = std::max(most_inward, r->inward_share);
             negative += r->volume < 0.0;
             ++genera[r->genus];
+            bounded += r->boundary_loops > 0;
+            most_loops = std::max(most_loops, r->boundary_loops);
+            most_components = std::max(most_components, r->components);
             h.push_back(100.0 * r->hausdorff_rel);
             if (r->seconds_learning > 0.0)
                 finish_ratio = std::max(finish_ratio, r->seconds_finish / r->seconds_learning);
@@ -215,12 +224,12 @@ int main(int argc, char** argv) {
         for (auto it = genera.rbegin(); it != genera.rend(); ++it)
             genus_text +=
                 (genus_text.empty() ? "" : ", ") + std::to_string(it->first) + " (" + std::to_string(it->second) + ")";
-        std::snprintf(
-            buf, sizeof buf,
-            "| %s | %u | %s | %zu | %zu | %zu | %zu | %.2f%% | %zu | %s | %.2f%% | %.2f%% | %.2f | %.2f | %zu |\n",
-            std::get<0>(key).c_str(), std::get<1>(key), std::get<2>(key) ? "finished" : "learnt", g.size(), crossing,
-            most, inward, 100.0 * most_inward, negative, genus_text.c_str(), s.median, s.max,
-            s.median > 0.0 ? s.max / s.median : 0.0, finish_ratio, errors);
+        std::snprintf(buf, sizeof buf,
+                      "| %s | %u | %s | %zu | %zu | %zu | %zu | %.2f%% | %zu | %s | %zu | %zu | %zu "
+                      "| %.2f%% | %.2f%% | %.2f | %.2f | %zu |\n",
+                      std::get<0>(key).c_str(), std::get<1>(key), std::get<2>(key) ? "finished" : "learnt", g.size(),
+                      crossing, most, inward, 100.0 * most_inward, negative, genus_text.c_str(), bounded, most_loops,
+                      most_components, s.median, s.max, s.median > 0.0 ? s.max / s.median : 0.0, finish_ratio, errors);
         out << buf;
     }
     std::snprintf(buf, sizeof buf, "\n%zu runs in %.0f s.\n", runs.size(), seconds);
