@@ -35,9 +35,11 @@ struct Statistics {
     std::uint64_t handles = 0;
     std::uint64_t membrane_faces_removed = 0;
     // Topology open (nmesh/finish/open_surface.h): faces taken off as the second sheet of a
-    // double layer, and faces taken off as far from every point.
+    // double layer (facing away from a partial view), faces taken off as far from every point,
+    // and faces taken off with the crossing pairs left at the end.
     std::uint64_t layer_faces_removed = 0;
     std::uint64_t open_faces_removed = 0;
+    std::uint64_t crossing_faces_removed = 0;
     std::uint64_t indexed_points = 0;  // points in the nearest-point index (0 when none was built)
     std::uint64_t index_bytes = 0;     //   its memory (PointGrid::memory_bytes)
     double seconds = 0.0;              // learning time, wall clock (normalisation included)

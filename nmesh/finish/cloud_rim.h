@@ -33,6 +33,9 @@ struct CloudRim {
     std::vector<char> rim;       // per point: 1 on the rim
     std::vector<char> flat;      // per point: 1 where the neighbourhood is flat
     std::vector<float> spacing;  // per point: the local point spacing, from its neighbours
+    // Per point: the unit normal of its neighbourhood's least-variance plane, of either sign; zero
+    // for a point with fewer than kRimMinNeighbours neighbours.
+    std::vector<Vec3> normal;
 };
 
 // `spacing`: the cloud's typical point spacing (the cells' size is two of them). O(n k) for k

@@ -1,12 +1,12 @@
 #include "nmesh/finish/open_surface.h"
 
-#include "nmesh/finish/cloud_rim.h"
+#include "nmesh/finish/cloud_normals.h"
+#include "nmesh/finish/mesh_pieces.h"
+#include "nmesh/geometry/triangle_intersection.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <unordered_map>
 #include <vector>
 
 namespace nmesh {
@@ -27,55 +27,6 @@ FaceGeometry geometry(const Mesh& m, Face f) {
     g.normal = normalized(n);
     g.mean_edge = (distance(a, b) + distance(b, c) + distance(c, a)) / 3.0f;
     return g;
-}
-
-// The least-variance axis of the points: the direction a sheet of them is thinnest in, its sign
-// fixed so that its largest component is positive.
-Vec3 thinnest_axis(const std::vector<Vec3>& points) {
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (const Vec3& p : points) mean += Eigen::Vector3d(p.x, p.y, p.z);
-    mean /= double(std::max<std::size_t>(points.size(), 1));
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const Vec3& p : points) {
-        const Eigen::Vector3d d = Eigen::Vector3d(p.x, p.y, p.z) - mean;
-        cov += d * d.transpose();
-    }
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(cov);
-    Eigen::Vector3d axis = solver.eigenvectors().col(0);  // eigenvalues ascending
-    int largest = 0;
-    for (int i = 1; i < 3; ++i)
-        if (std::fabs(axis[i]) > std::fabs(axis[largest])) largest = i;
-    if (axis[largest] < 0) axis = -axis;
-    return {float(axis.x()), float(axis.y()), float(axis.z())};
-}
-
-// Removes the marked faces one at a time, each behind Mesh::can_remove_face, so that the mesh
-// stays connected: each region from its face of largest `priority`, then pass after pass every
-// marked face beside a hole that can go (a face that cannot stays). Returns the faces removed.
-std::uint32_t remove_one_by_one(Mesh& m, std::vector<char>& marked, const std::vector<float>& priority) {
-    std::vector<std::uint32_t> order;
-    for (std::uint32_t f = 0; f < marked.size(); ++f)
-        if (marked[f]) order.push_back(f);
-    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-        return priority[a] != priority[b] ? priority[a] > priority[b] : a < b;
-    });
-    std::uint32_t removed = 0;
-    for (bool progress = true; progress;) {
-        progress = false;
-        // Widen the holes first, so that a region is opened once, from its farthest face.
-        for (int opening = 0; opening < 2; ++opening)
-            for (std::uint32_t f : order) {
-                const Face face(f);
-                if (m.is_removed(face)) continue;
-                if (m.beside_boundary(face) == bool(opening) || !m.can_remove_face(face)) continue;
-                m.remove_face(face);
-                ++removed;
-                progress = true;
-                if (opening) break;  // one new hole, then widen it
-            }
-    }
-    for (std::uint32_t f : order) marked[f] = !m.is_removed(Face(f));
-    return removed;
 }
 
 // Unmarks the edge-connected regions of marked faces that `keep(region)` refuses; returns the
@@ -114,36 +65,6 @@ float flat_rim_share(const CloudRim& cr) {
     std::size_t n = 0;
     for (std::size_t i = 0; i < cr.rim.size(); ++i) n += std::size_t(cr.rim[i] && cr.flat[i]);
     return cr.rim.empty() ? 0.0f : float(n) / float(cr.rim.size());
-}
-
-// The faces' geometry and the scales both parts measure against.
-struct Scales {
-    std::vector<FaceGeometry> g;
-    float mean_edge = 0.0f, typical_edge = 0.0f, spacing = 0.0f;
-};
-
-Scales measure(const Mesh& mesh, const PointGrid& cloud) {
-    Scales sc;
-    const std::uint32_t nf = mesh.face_capacity();
-    sc.g.resize(nf);
-    std::vector<FaceGeometry>& g = sc.g;
-    double area = 0.0, edges = 0.0;
-    for (std::uint32_t f = 0; f < nf; ++f) {
-        if (mesh.is_removed(Face(f))) continue;
-        g[f] = geometry(mesh, Face(f));
-        area += g[f].area;
-        edges += g[f].mean_edge;
-    }
-    sc.mean_edge = float(edges / mesh.n_faces());
-    // The typical edge: the median of the faces' mean edges (the big faces spanning a hole, which
-    // no sample refines, do not count more than their number).
-    std::vector<float> sizes;
-    for (std::uint32_t f = 0; f < nf; ++f)
-        if (!mesh.is_removed(Face(f))) sizes.push_back(g[f].mean_edge);
-    std::nth_element(sizes.begin(), sizes.begin() + std::ptrdiff_t(sizes.size() / 2), sizes.end());
-    sc.typical_edge = sizes[sizes.size() / 2];
-    sc.spacing = float(std::sqrt(area / double(cloud.size())));
-    return sc;
 }
 
 }  // namespace
@@ -239,107 +160,103 @@ IndexedMesh cut_faces(const Mesh& m, const std::vector<char>& marked, std::uint3
     return out;
 }
 
-OpenReport remove_double_layers(Mesh& mesh, const PointGrid& cloud) {
-    OpenReport out;
-    if (!mesh.has_faces() || cloud.size() == 0 || mesh.n_faces() == 0) return out;
-    const std::uint32_t nf = mesh.face_capacity();
-    const Scales sc = measure(mesh, cloud);
-    const std::vector<FaceGeometry>& g = sc.g;
-    const float mean_edge = sc.mean_edge, spacing = sc.spacing;
-    const std::vector<Vec3> points = cloud.indexed_points();
-    const CloudRim cr = cloud_rim(points, spacing);
-    out.rim_share = flat_rim_share(cr);
-    // Only on a partial view: a closed object's thin parts and the learning's own folds are two
-    // opposite sheets close together too.
-    if (out.rim_share < kViewRimShare) return out;
-    // Face centroids hashed in cells of the reach.
-    const float reach = kLayerReach * mean_edge, gap = kLayerGap * spacing;
-    const float cell = std::max(reach, 1e-12f);
-    auto key_of = [&](const Vec3& p, int dx, int dy, int dz) {
-        const auto k = [&](float v, int d) { return std::int64_t(std::floor(v / cell)) + d; };
-        return (std::uint64_t(k(p.x, dx) & 0x1fffff) << 42) | (std::uint64_t(k(p.y, dy) & 0x1fffff) << 21) |
-               std::uint64_t(k(p.z, dz) & 0x1fffff);
-    };
-    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
-    for (std::uint32_t f = 0; f < nf; ++f)
-        if (!mesh.is_removed(Face(f))) cells[key_of(g[f].centroid, 0, 0, 0)].push_back(f);
-    std::vector<char> layered(nf, 0);
-    for (std::uint32_t f = 0; f < nf; ++f) {
-        if (mesh.is_removed(Face(f)) || g[f].area == 0.0f) continue;
-        for (int d = 0; d < 27 && !layered[f]; ++d) {
-            const auto it = cells.find(key_of(g[f].centroid, d % 3 - 1, d / 3 % 3 - 1, d / 9 - 1));
-            if (it == cells.end()) continue;
-            for (std::uint32_t u : it->second) {
-                if (u == f || dot(g[f].normal, g[u].normal) > -0.7f) continue;
-                const Vec3 off = g[u].centroid - g[f].centroid;
-                if (squared_norm(off) > reach * reach || std::fabs(dot(off, g[f].normal)) > gap) continue;
-                layered[f] = 1;
-                break;
+IndexedMesh cut_faces(const IndexedMesh& mesh, const std::vector<char>& marked, std::uint32_t& removed) {
+    removed = 0;
+    if (std::find(marked.begin(), marked.end(), char(1)) == marked.end()) return mesh;
+    std::vector<IndexedMesh> kept;
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> corner;  // directed edge -> triangle
+    for (MeshPiece& piece : split_pieces(mesh)) {
+        const Mesh m = [&] {
+            Mesh built = Mesh::from_indexed(piece.mesh, true);
+            built.build_faces();
+            return built;
+        }();
+        // Each face of m by one of its directed edges (from_indexed keeps the vertex numbers).
+        corner.clear();
+        for (std::uint32_t t = 0; t < piece.mesh.triangles.size(); ++t)
+            for (std::size_t i = 0; i < 3; ++i) {
+                const auto& tri = piece.mesh.triangles[t];
+                corner.push_back({(std::uint64_t(tri[i]) << 32) | tri[(i + 1) % 3], t});
             }
+        std::sort(corner.begin(), corner.end());
+        std::vector<char> marks(m.face_capacity(), 0);
+        for (std::uint32_t f = 0; f < m.face_capacity(); ++f) {
+            if (m.is_removed(Face(f))) continue;
+            const Halfedge h = m.halfedge(Face(f));
+            const std::uint64_t k = (std::uint64_t(m.from(h).idx) << 32) | m.to(h).idx;
+            const auto it = std::lower_bound(corner.begin(), corner.end(), std::make_pair(k, 0u));
+            marks[f] = marked[piece.triangle[it->second]];
         }
+        std::uint32_t gone = 0;
+        kept.push_back(cut_faces(m, marks, gone));
+        removed += gone;
     }
-    // Only sheets: edge-connected regions of at least kLayerMinShare of the faces (a fold of the
-    // learnt mesh, or the two sides of a thin part touching, is a few faces).
-    const std::size_t least = std::max<std::size_t>(64, std::size_t(kLayerMinShare * mesh.n_faces()));
-    out.double_layer_faces =
-        keep_regions(mesh, layered, [&](const std::vector<std::uint32_t>& region) { return region.size() >= least; });
-    if (out.double_layer_faces > 0) {
-        // Which layer goes: the faces facing away from the thinnest axis, the decision smoothed by
-        // three rounds of majority among each face and its double-layer neighbours.
-        const Vec3 axis = thinnest_axis(points);
-        std::vector<char> drop(nf, 0), next(nf, 0);
-        for (std::uint32_t f = 0; f < nf; ++f) drop[f] = layered[f] && dot(g[f].normal, axis) < 0.0f;
-        for (int round = 0; round < 3; ++round) {
-            for (std::uint32_t f = 0; f < nf; ++f) {
-                if (!layered[f]) continue;
-                int votes = drop[f] ? 1 : -1;
-                for (Halfedge h = mesh.halfedge(Face(f)), s = h;;) {
-                    const Face u = mesh.face(Mesh::twin(h));  // none across a boundary
-                    if (u.valid() && layered[u.idx]) votes += drop[u.idx] ? 1 : -1;
-                    if ((h = mesh.next(h)) == s) break;
-                }
-                next[f] = votes > 0;
-            }
-            drop.swap(next);
-        }
-        std::vector<float> priority(nf, 0.0f);
-        for (std::uint32_t f = 0; f < nf; ++f) priority[f] = -dot(g[f].normal, axis);
-        out.removed_layer = remove_one_by_one(mesh, drop, priority);
-    }
-
-    return out;
+    return join_pieces(kept);
 }
 
-IndexedMesh cut_unsupported(const Mesh& mesh, const PointGrid& cloud, OpenReport& report) {
+float typical_edge(const IndexedMesh& mesh) {
+    std::vector<float> sizes;
+    sizes.reserve(mesh.triangles.size());
+    for (const auto& t : mesh.triangles) {
+        const Vec3 a = mesh.positions[t[0]], b = mesh.positions[t[1]], c = mesh.positions[t[2]];
+        sizes.push_back((distance(a, b) + distance(b, c) + distance(c, a)) / 3.0f);
+    }
+    if (sizes.empty()) return 0.0f;
+    std::nth_element(sizes.begin(), sizes.begin() + std::ptrdiff_t(sizes.size() / 2), sizes.end());
+    return sizes[sizes.size() / 2];
+}
+
+CloudView view_cloud(const PointGrid& cloud, float spacing) {
+    CloudView view;
+    view.points = cloud.indexed_points();
+    view.rim = cloud_rim(view.points, spacing);
+    view.spacing = spacing;
+    if (!view.rim.spacing.empty()) {
+        std::vector<float> local = view.rim.spacing;
+        std::nth_element(local.begin(), local.begin() + std::ptrdiff_t(local.size() / 2), local.end());
+        view.spacing = local[local.size() / 2];
+    }
+    view.rim_share = flat_rim_share(view.rim);
+    view.partial = view.rim_share >= kViewRimShare;
+    if (view.partial) {
+        view.normals = view.rim.normal;
+        Orientation o = orient_normals(view.points, view.normals, spacing);
+        view.direction = o.direction;
+        view.part = std::move(o.part);
+    }
+    return view;
+}
+
+IndexedMesh cut_unsupported(const Mesh& mesh, const PointGrid& cloud, const CloudView& view, float typical,
+                            OpenReport& report) {
     if (!mesh.has_faces() || cloud.size() == 0 || mesh.n_faces() == 0) return mesh.to_indexed();
     const std::uint32_t nf = mesh.face_capacity();
-    const Scales sc = measure(mesh, cloud);
-    const float limit = std::max(kOpenEdges * sc.typical_edge, kOpenSpacings * sc.spacing);
-    const std::vector<Vec3> points = cloud.indexed_points();
-    const CloudRim cr = cloud_rim(points, sc.spacing);
-    const std::vector<char>& rim = cr.rim;
+    const float limit = std::max(kOpenEdges * typical, kOpenSpacings * view.spacing);
+    const std::vector<Vec3>& points = view.points;
+    const std::vector<char>& rim = view.rim.rim;
+    std::vector<FaceGeometry> g(nf);
     std::vector<char> far(nf, 0);
     std::vector<float> away(nf, 0.0f);
     std::vector<Vec3> rim_at;
     for (std::size_t i = 0; i < points.size(); ++i)
         if (rim[i]) rim_at.push_back(points[i]);
-    report.rim_share = flat_rim_share(cr);
-    const bool view = report.rim_share >= kViewRimShare;
+    report.rim_share = view.rim_share;
     for (std::uint32_t f = 0; f < nf; ++f) {
         if (mesh.is_removed(Face(f))) continue;
-        const NearestPoint p = cloud.find_nearest(sc.g[f].centroid);
+        g[f] = geometry(mesh, Face(f));
+        const NearestPoint p = cloud.find_nearest(g[f].centroid);
         away[f] = std::sqrt(p.squared_distance);
-        far[f] = away[f] > std::max(kOpenEdges * sc.typical_edge, kOpenSpacings * cr.spacing[p.index]);
+        far[f] = away[f] > std::max(kOpenEdges * typical, kOpenSpacings * view.rim.spacing[p.index]);
     }
     // Which regions of far faces are holes in the scan (see open_surface.h): measured round the
     // region's deepest face, within kOpenRimReach times its distance to the cloud.
-    report.unsupported_faces = keep_regions(mesh, far, [&](const std::vector<std::uint32_t>& region) {
+    report.unsupported_faces += keep_regions(mesh, far, [&](const std::vector<std::uint32_t>& region) {
         std::uint32_t deepest = region.front();
         for (std::uint32_t f : region)
             if (away[f] > away[deepest]) deepest = f;
         const float depth = away[deepest] / limit;
         if (depth < std::min(kOpenHoleDepth, kOpenEndDepth)) return false;
-        const Vec3 c = sc.g[deepest].centroid;
+        const Vec3 c = g[deepest].centroid;
         const float reach = kOpenRimReach * away[deepest] + limit;
         std::vector<Vec3> ring;  // the rim points in reach
         for (const Vec3& p : rim_at)
@@ -348,14 +265,32 @@ IndexedMesh cut_unsupported(const Mesh& mesh, const PointGrid& cloud, OpenReport
         std::size_t all = 0;
         for (const Vec3& p : points) all += std::size_t(squared_distance(p, c) <= reach * reach);
         // Round the face: the largest angle the rim points leave free, seen along its normal.
-        const Vec3 n = sc.g[deepest].normal;
+        const Vec3 n = g[deepest].normal;
         const Vec3 u = normalized(cross(n, std::fabs(n.x) < 0.9f ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
         const bool surrounded = largest_gap(c, ring, u, cross(n, u)) < kOpenSurroundGap;
         const bool hole = surrounded && depth >= kOpenHoleDepth;
-        const bool end = view && depth >= kOpenEndDepth && float(ring.size()) >= kOpenRimShare * float(all);
+        const bool end = view.partial && depth >= kOpenEndDepth && float(ring.size()) >= kOpenRimShare * float(all);
         return hole || end;
     });
-    return cut_faces(mesh, far, report.removed_unsupported);
+    std::uint32_t removed = 0;
+    IndexedMesh out = cut_faces(mesh, far, removed);
+    report.removed_unsupported += removed;
+    return out;
+}
+
+IndexedMesh cut_crossings(const IndexedMesh& mesh, std::uint32_t& removed) {
+    removed = 0;
+    IndexedMesh out = mesh;
+    for (int round = 0; round < kCrossingRounds; ++round) {
+        const auto pairs = self_intersecting_pairs(out);
+        if (pairs.empty()) break;
+        std::vector<char> crossing(out.triangles.size(), 0);
+        for (const auto& [s, t] : pairs) crossing[s] = crossing[t] = 1;
+        std::uint32_t gone = 0;
+        out = cut_faces(out, crossing, gone);
+        removed += gone;
+    }
+    return out;
 }
 
 }  // namespace nmesh

@@ -1,25 +1,18 @@
-// nmesh/finish/open_surface.h — Parameters::topology open: the second sheet of a one-sided scan
-// taken off, and the closed result opened where the cloud has no data.
+// nmesh/finish/open_surface.h — Parameters::topology open: the closed result opened where the
+// cloud has no data, the one sheet of a partial view, and no crossing triangles.
 //
-// The learning makes a closed surface; these two steps cut it open, each keeping a manifold with
-// boundary, without bow-ties. reconstruct() runs the first on the learnt mesh, so that the finishing stage polishes one sheet instead of untangling two, and the
-// second on the finished mesh, whose surface lies on the cloud (the learnt mesh's folds and
-// stray vertices would read as holes).
-// A partial view: a cloud with at least kViewRimShare of its points on its rim where the cloud
-// is flat (nmesh/finish/cloud_rim.h; creases and corners read as rim). Measured: 3.3% for the single view bunny_scan090; at most 0.73% for
-// the shared closed clouds and the bunny with its five base holes (the rocker arm 0.73%, the
-// bunny 0.29%, the knot 0.14%, the horse 0.12%, the eight 0.09%).
-//  1. Double layers (remove_double_layers), on a partial view only. A closed mesh learnt from an
-//     open sheet (one range image) wraps the sheet in two layers of opposite orientation lying on the same points. A face whose opposite-facing
-//     neighbour (a face within kLayerReach mean edge lengths whose normal points the other way)
-//     lies less than kLayerGap point spacings behind or in front of it is in a double layer: the
-//     data cannot tell two sheets apart there. Of the two layers, the faces facing away from the
-//     cloud's own side go: its thinnest direction (the least-variance axis of the points), taken
-//     with the sign the mesh's faces agree with by area. A thin but real part (an ear) is two
-//     sheets more than kLayerGap spacings apart and stays, and only regions of at least
-//     kLayerMinShare of the faces count (the folds of a learnt mesh are a few faces each).
-//  2. Unsupported faces (cut_unsupported), on the finished mesh. A face whose centroid is
-//     farther from every cloud point than kOpenEdges typical edge lengths (the median over the
+// The learning makes a closed surface; these steps cut it open, each keeping a manifold with
+// boundary, without bow-ties. The cloud is read once (view_cloud): its rim, its local spacing,
+// and whether it is a partial view: a cloud with at least kViewRimShare of its points on its rim
+// where the cloud is flat (nmesh/finish/cloud_rim.h; creases and corners read as rim). Measured:
+// 3.3% for the single view bunny_scan090; at most 0.73% for the shared closed clouds and the
+// bunny with its five base holes (the rocker arm 0.73%, the bunny 0.29%, the knot 0.14%, the
+// horse 0.12%, the eight 0.09%). reconstruct() then runs:
+//  1. on a partial view only, the view's sheet in place of the learnt mesh (view_sheet,
+//     nmesh/finish/view_sheet.h), in one or more pieces (nmesh/finish/mesh_pieces.h), each
+//     finished as a mesh of its own;
+//  2. Unsupported faces (cut_unsupported), on the finished mesh (each piece of it). A face whose
+//     centroid is farther from every cloud point than kOpenEdges typical edge lengths (the median over the
 //     faces) and kOpenSpacings local point spacings (nmesh/finish/cloud_rim.h, so a sparse part
 //     of a scan is not shredded) has no data. An edge-connected region of such faces goes when it
 //     is a hole in the scan or lies beyond the scan's end, told by its depth (the distance of its
@@ -39,12 +32,19 @@
 //     mesh. A face with a point near stays: no hole opens where there are points. The faces go
 //     all at once (cut_faces), and the result may have several components: the sheets a single
 //     view sees apart.
+//  3. Crossing faces (cut_crossings), last: the faces of every pair of crossing triangles the
+//     finishing stage left go, with what the cut takes for a manifold (a surface with a hole is
+//     valid, one that crosses itself is not). On a view's sheet the finishing stage runs without
+//     its repair, and this cut takes the few crossings its relaxation makes (bunny_scan090 at
+//     30,000 vertices, seed 1: 101 faces; the repair took 7 s there and then fell back on the
+//     sheet as it was).
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include "nmesh/finish/cloud_rim.h"
 #include "nmesh/indexed_mesh.h"
 #include "nmesh/mesh/mesh.h"
 #include "nmesh/spatial/point_grid.h"
@@ -52,17 +52,14 @@
 namespace nmesh {
 
 struct OpenReport {
-    std::uint32_t double_layer_faces = 0;  // faces found in double layers
-    std::uint32_t removed_layer = 0;       // of which removed (the second layer)
-    std::uint32_t unsupported_faces = 0;   // faces far from every point
+    std::uint32_t removed_layer = 0;       // partial views: the learnt faces the view's sheet has fewer
+    std::uint32_t unsupported_faces = 0;   // faces far from every point, in regions that open
     std::uint32_t removed_unsupported = 0;
+    std::uint32_t removed_crossing = 0;    // faces removed with the crossing pairs
     float rim_share = 0.0f;  // the share of the cloud's points on its rim where it is flat
 };
 
 inline constexpr float kViewRimShare = 0.02f;
-inline constexpr float kLayerReach = 1.5f;
-inline constexpr float kLayerGap = 1.0f;
-inline constexpr float kLayerMinShare = 0.02f;
 inline constexpr std::size_t kOpenMinFaces = 20;  // a smaller piece left by the cut goes
 inline constexpr float kOpenRimReach = 2.0f;
 inline constexpr float kOpenSurroundGap = 1.5707964f;  // 90 degrees
@@ -71,13 +68,38 @@ inline constexpr float kOpenEndDepth = 5.0f;
 inline constexpr float kOpenRimShare = 0.05f;
 inline constexpr float kOpenEdges = 1.2f;
 inline constexpr float kOpenSpacings = 1.5f;
+inline constexpr int kCrossingRounds = 3;  // a cut makes no new crossing: one round suffices
 
-// `mesh`: with its face index; `cloud`: the nearest-point index over the same points the mesh was
-// learnt from. Each fills its part of the report. O(F log F) and, for the rim, O(n k) for n
-// points with k neighbours each.
-OpenReport remove_double_layers(Mesh& mesh, const PointGrid& cloud);
-// The mesh without its unsupported faces (the same as mesh.to_indexed() when there are none).
-IndexedMesh cut_unsupported(const Mesh& mesh, const PointGrid& cloud, OpenReport& report);
+// What the open steps know of the cloud: its indexed points, their rim (nmesh/finish/cloud_rim.h),
+// whether it is a partial view and, if so, its normals turned to the view's side.
+struct CloudView {
+    std::vector<Vec3> points;  // the nearest-point index's points, in its order
+    CloudRim rim;
+    float spacing = 0.0f;    // the median of the points' local spacings
+    float rim_share = 0.0f;  // the share of the points on the rim where the cloud is flat
+    bool partial = false;    // rim_share >= kViewRimShare
+    std::vector<Vec3> normals;  // on a partial view: per point, oriented (cloud_normals.h)
+    Vec3 direction;             //   the direction towards the scanner (orient_normals)
+    std::vector<std::uint32_t> part;  // and per point its connected part (orient_normals)
+};
+
+// `cloud`: the nearest-point index over the points the mesh was learnt from; `spacing`: a first
+// guess of their spacing (the size of the rim's cells). O(n k) for n points with k neighbours.
+CloudView view_cloud(const PointGrid& cloud, float spacing);
+
+// `mesh`: with its face index; `typical_edge`: the median of the faces' mean edge lengths over
+// the whole output (typical_edge()), of which `mesh` may be one piece. The mesh without its
+// unsupported faces (the same as mesh.to_indexed() when there are none). Adds to the report's
+// counts. O(F log F) and the rim points near each region that is deep enough.
+IndexedMesh cut_unsupported(const Mesh& mesh, const PointGrid& cloud, const CloudView& view, float typical_edge,
+                            OpenReport& report);
+
+// The mesh without the faces of its crossing pairs (see open_surface.h). `removed` receives the
+// faces removed. O(F) per round for faces of similar size (self_intersecting_pairs).
+IndexedMesh cut_crossings(const IndexedMesh& mesh, std::uint32_t& removed);
+
+// The median over the faces of their mean edge length; 0 without faces.
+float typical_edge(const IndexedMesh& mesh);
 
 // The mesh without the `marked` faces (one flag per face slot), as triangles: all at once, so that
 // no removal order can get stuck (one face at a time, a strip of marked faces bridging a hole, or
@@ -90,5 +112,8 @@ IndexedMesh cut_unsupported(const Mesh& mesh, const PointGrid& cloud, OpenReport
 // `removed` receives the number of faces removed; with none, the result is mesh.to_indexed().
 // Needs the face index. O(F + V valence) per round of the closure (one or two rounds in practice).
 IndexedMesh cut_faces(const Mesh& mesh, const std::vector<char>& marked, std::uint32_t& removed);
+// The same on a triangle list of one or more pieces, each a manifold with boundary (the output of
+// a cut), `marked` holding one flag per triangle: each piece is cut as a half-edge mesh.
+IndexedMesh cut_faces(const IndexedMesh& mesh, const std::vector<char>& marked, std::uint32_t& removed);
 
 }  // namespace nmesh

@@ -10,7 +10,9 @@
 #include "nmesh/spatial/cloud_sample.h"
 #include "nmesh/error.h"
 #include "nmesh/finish/finish.h"
+#include "nmesh/finish/mesh_pieces.h"
 #include "nmesh/finish/open_surface.h"
+#include "nmesh/finish/view_sheet.h"
 #include "nmesh/metrics.h"
 #include "nmesh/geometry/triangle_bvh.h"
 #include "nmesh/geometry/triangle_intersection.h"
@@ -335,7 +337,7 @@ void settle(NeuralMesh& engine, const Parameters& params, Reporter& reporter) {
 // (FinishOptions::repair_max_rounds).
 bool finish_stage(const Mesh& learnt, std::shared_ptr<PointGrid>& cloud_index, PointSpan cloud,
                   const Normalization& norm, const Parameters& params, Reporter& reporter, Statistics& stats,
-                  Mesh& mesh) {
+                  Mesh& mesh, double progress_from = 0.0, double progress_share = 1.0, bool repair = true) {
     if (!cloud_index) {
         cloud_index = index_cloud(cloud, norm.transform, norm.bounds, params);
         record_index(*cloud_index, stats);
@@ -344,8 +346,9 @@ bool finish_stage(const Mesh& learnt, std::shared_ptr<PointGrid>& cloud_index, P
     FinishOptions options;
     options.rounds = int(params.finish_rounds);
     options.fit_rounds = int(params.fit_rounds);
+    if (!repair) options.repair_max_rounds = 0;
     finish_mesh(mesh, cloud_index->indexed_points(), options, cloud_index.get(),
-                [&](double fraction) { reporter.report_finishing(fraction); });
+                [&](double fraction) { reporter.report_finishing(progress_from + progress_share * fraction); });
     return mesh.n_vertices() == learnt.n_vertices();
 }
 
@@ -357,6 +360,67 @@ const PointGrid& open_index(std::shared_ptr<PointGrid>& cloud_index, PointSpan c
         record_index(*cloud_index, stats);
     }
     return *cloud_index;
+}
+
+// Topology open (nmesh/finish/open_surface.h): on a partial view, the view's sheet made again
+// from the learnt vertices (nmesh/finish/view_sheet.h); then each piece finished (when `finish`), cut where the cloud has no data, and the
+// pieces joined without the faces of crossing pairs. Sets result.mesh and the open counts, and
+// stats.finished when every piece was finished. Unless `last` (no output retry left), crossings
+// on a closed object's mesh are left for the output check, so that the learning tries another
+// path from its checkpoint before any face is cut; a view's sheet is cut at once (its crossings
+// come from the finishing stage's relaxation, not from the path the learning took).
+void open_output(Mesh& learnt, bool finish, bool last, std::shared_ptr<PointGrid>& cloud_index, PointSpan cloud,
+                 const Normalization& norm, const Parameters& params, Reporter& reporter, Result& result) {
+    Statistics& stats = result.stats;
+    learnt.build_faces();
+    const PointGrid& index = open_index(cloud_index, cloud, norm, params, stats);
+    double area = 0.0;
+    for (std::uint32_t f = 0; f < learnt.face_capacity(); ++f) {
+        if (learnt.is_removed(Face(f))) continue;
+        const Halfedge h = learnt.halfedge(Face(f));
+        const Vec3 a = learnt.position(learnt.from(h)), b = learnt.position(learnt.to(h));
+        area += 0.5 * double(nmesh::norm(cross(b - a, learnt.position(learnt.to(learnt.next(h))) - a)));
+    }
+    // The spacing guess: the mesh's area shared among the points (twice the sheet's on a view).
+    const CloudView view = view_cloud(index, float(std::sqrt(area / double(std::max<std::size_t>(index.size(), 1)))));
+    OpenReport report;
+    std::vector<Mesh> pieces;
+    if (view.partial) {
+        const IndexedMesh side = view_sheet(learnt, index, view, report);
+        learnt = Mesh();
+        for (const MeshPiece& p : split_pieces(side)) pieces.push_back(Mesh::from_indexed(p.mesh, true));
+    } else {
+        pieces.push_back(std::move(learnt));
+    }
+    std::size_t faces = 0, done = 0;
+    for (const Mesh& p : pieces) faces += p.n_faces();
+    stats.finished = finish;
+    std::vector<IndexedMesh> shapes;
+    for (Mesh& piece : pieces) {
+        if (finish) {
+            Mesh finished;
+            const double from = double(done) / double(faces), share = double(piece.n_faces()) / double(faces);
+            done += piece.n_faces();
+            // A view's sheet without the repair: its few crossings are cut at the end instead
+            // (the repair's rounds on them take seconds and then fall back on the sheet as it was).
+            if (finish_stage(piece, cloud_index, cloud, norm, params, reporter, stats, finished, from, share, !view.partial))
+                piece = std::move(finished);
+            else
+                stats.finished = false;
+        }
+        piece.build_faces();
+        shapes.push_back(piece.to_indexed());
+    }
+    const float typical = typical_edge(join_pieces(shapes));
+    shapes.clear();
+    for (const Mesh& piece : pieces) shapes.push_back(cut_unsupported(piece, index, view, typical, report));
+    pieces.clear();
+    std::uint32_t crossing = 0;
+    result.mesh = last || view.partial ? cut_crossings(join_pieces(shapes), crossing) : join_pieces(shapes);
+    report.removed_crossing += crossing;
+    stats.layer_faces_removed = report.removed_layer;
+    stats.open_faces_removed = report.removed_unsupported;
+    stats.crossing_faces_removed = report.removed_crossing;
 }
 
 // Every closed output faces outward (its triangles reversed when the learning turned the whole
@@ -415,26 +479,15 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
         std::shared_ptr<PointGrid> cloud_index = finish || open ? engine->take_cloud_index() : nullptr;
         engine.reset();
 
-        // Topology open: the second sheet of a double layer off the learnt mesh.
         if (open) {
-            learnt.build_faces();
-            result.stats.layer_faces_removed =
-                remove_double_layers(learnt, open_index(cloud_index, cloud, norm, params, result.stats)).removed_layer;
-        }
-        Mesh finished;
-        result.stats.finished =
-            finish && finish_stage(learnt, cloud_index, cloud, norm, params, reporter, result.stats, finished);
-        if (result.stats.finished) learnt = Mesh();  // freed before the output mesh is built
-        Mesh& output = result.stats.finished ? finished : learnt;
-        // Topology open: the faces far from the cloud's data off the output (it may then have
-        // several components, which the half-edge mesh does not hold).
-        if (open) {
-            output.build_faces();
-            OpenReport cut;
-            result.mesh = cut_unsupported(output, open_index(cloud_index, cloud, norm, params, result.stats), cut);
-            result.stats.open_faces_removed = cut.removed_unsupported;
+            const bool last = attempt >= output_retries || !checkpoints.on || !checkpoints.last;
+            open_output(learnt, finish, last, cloud_index, cloud, norm, params, reporter, result);
         } else {
-            result.mesh = output.to_indexed();
+            Mesh finished;
+            result.stats.finished =
+                finish && finish_stage(learnt, cloud_index, cloud, norm, params, reporter, result.stats, finished);
+            if (result.stats.finished) learnt = Mesh();  // freed before the output mesh is built
+            result.mesh = (result.stats.finished ? finished : learnt).to_indexed();
         }
         cloud_index.reset();
         result.mesh = norm.to_input(result.mesh);

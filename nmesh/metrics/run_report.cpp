@@ -82,6 +82,7 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << "  \"membrane_faces_removed\": " << s.membrane_faces_removed << ",\n"
       << "  \"layer_faces_removed\": " << s.layer_faces_removed << ",\n"
       << "  \"open_faces_removed\": " << s.open_faces_removed << ",\n"
+      << "  \"crossing_faces_removed\": " << s.crossing_faces_removed << ",\n"
       << "  \"indexed_points\": " << s.indexed_points << ",\n"
       << "  \"seconds\": " << s.seconds << ",\n"
       << "  \"seconds_finish\": " << s.seconds_finish << ",\n"

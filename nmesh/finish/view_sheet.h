@@ -1,0 +1,45 @@
+// nmesh/finish/view_sheet.h — Parameters::topology open on a partial view: the one sheet the view
+// sees, from the closed mesh learnt round it.
+//
+// A closed mesh learnt from an open sheet (one range image) wraps the sheet in two layers of
+// opposite orientation lying on the same points. They do not stay apart: where one layer wins the
+// samples its vertices multiply and the other's faces grow (bunny_scan090 at 30,000 vertices:
+// three quarters of the faces face the view), and the two cross and fold into each other at the
+// scale of an edge (17,000 crossing pairs). So no set of the learnt faces is the sheet.
+// The vertices are the learning's, and lie on the surface; the connectivity is made again:
+//  1. every vertex of the learnt mesh (both layers: together they sample the surface at about the
+//     density asked for, so the sheet keeps about the vertex count asked for);
+//  2. projected onto the plane across the view direction (the mean normal of the cloud's largest
+//     part, oriented, nmesh/finish/cloud_normals.h) and triangulated there (Delaunay,
+//     nmesh/geometry/delaunay_2d.h). A range image sees each point of its surface from one side,
+//     so the surface projects one to one and the triangles, counter-clockwise seen from the
+//     scanner, face it and cannot fold or cross;
+//  3. the triangles over no data go: those with an edge longer than kSheetMaxEdges typical edges,
+//     or the centroid or an edge's midpoint farther from every point than kOpenEdges typical edges
+//     and kOpenSpacings local spacings (the gaps where one part hid another from the scanner, the
+//     hull across the sheet's concave outline). What is left is cut as cut_faces cuts (a manifold
+//     with boundary, no piece under kOpenMinFaces);
+//  4. the vertices no kept triangle uses are triangulated again on their own, up to kSheetPasses
+//     passes in all: a part seen through a gap may overlap the part in front across the view,
+//     where one triangulation cannot hold both.
+// Choice: a new triangulation rather than a choice among the learnt faces. Keeping the faces that
+// face the view (a face's normal against its nearest point's oriented normal) left the bunny's
+// single view shredded: 13% of its area gone, largest distance from the scan to the mesh 6.3% of
+// the diagonal, crossings left in every run (docs/algorithm.md, Open surfaces).
+#pragma once
+
+#include "nmesh/finish/open_surface.h"
+
+namespace nmesh {
+
+// A triangle with an edge longer than this many typical edges spans a gap without asking the
+// cloud (the hull's triangles across the outline's bays; asking is slow that far from the points).
+inline constexpr float kSheetMaxEdges = 8.0f;
+inline constexpr int kSheetPasses = 3;
+
+// `mesh`: the learnt mesh with its face index; `view`: a partial view (view.partial; otherwise
+// the mesh is returned as it is). The sheet, as triangles, in one or more pieces; sets
+// report.removed_layer to the learnt faces it has fewer. O(V log V + F) per pass.
+IndexedMesh view_sheet(const Mesh& mesh, const PointGrid& cloud, const CloudView& view, OpenReport& report);
+
+}  // namespace nmesh
