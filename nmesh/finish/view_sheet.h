@@ -24,8 +24,8 @@
 //     where one triangulation cannot hold both.
 // Choice: a new triangulation rather than a choice among the learnt faces. Keeping the faces that
 // face the view (a face's normal against its nearest point's oriented normal) left the bunny's
-// single view shredded: 13% of its area gone, largest distance from the scan to the mesh 6.3% of
-// the diagonal, crossings left in every run (docs/algorithm.md, Open surfaces).
+// single view shredded: 13% of its area gone once its crossing faces were cut (docs/algorithm.md,
+// Open surfaces).
 #pragma once
 
 #include "nmesh/finish/open_surface.h"
