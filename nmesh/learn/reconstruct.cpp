@@ -411,6 +411,12 @@ void open_output(Mesh& learnt, bool finish, bool last, std::shared_ptr<PointGrid
         piece.build_faces();
         shapes.push_back(piece.to_indexed());
     }
+    if (view.partial) {
+        // The finished sheet without the faces its relaxation turned against the view.
+        const IndexedMesh sheet = cut_turned(join_pieces(shapes), index, view, report);
+        pieces.clear();
+        for (const MeshPiece& p : split_pieces(sheet)) pieces.push_back(Mesh::from_indexed(p.mesh, true));
+    }
     const float typical = typical_edge(join_pieces(shapes));
     shapes.clear();
     for (const Mesh& piece : pieces) shapes.push_back(cut_unsupported(piece, index, view, typical, report));
