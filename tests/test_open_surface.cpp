@@ -57,6 +57,19 @@ TwoSheets two_sheets(const IndexedMesh& m) {
     return s;
 }
 
+// Both sheets there, each at least `near_share` / `far_share` of its area and at most 1.1 times it,
+// no triangle spanning the two depths, every face turned the same way.
+void check_two_sheets(const IndexedMesh& m, double near_area, double near_share, double far_area, double far_share) {
+    const TwoSheets s = two_sheets(m);
+    MESSAGE("view area: near " << s.near << " of " << near_area << ", far " << s.far << " of " << far_area);
+    CHECK(s.between == 0);
+    CHECK(s.near > near_share * near_area);
+    CHECK(s.near < 1.1 * near_area);
+    CHECK(s.far > far_share * far_area);
+    CHECK(s.far < 1.1 * far_area);
+    CHECK((s.facing_up == 0 || s.facing_up == m.triangles.size()));
+}
+
 PointCloud capless_sphere(std::size_t n) {
     PointCloud all = test::sphere_cloud(2 * n, 1.0f, {}, 11), out;
     for (const Vec3& p : all.points)
@@ -416,14 +429,7 @@ TEST_CASE("topology open on a view where a near part hides a far one: both sheet
     // far), less the strip of about half an edge a mesh of the points inside a boundary leaves
     // along it (seen on clouds 1-10, seeds 1-2: near 0.26-0.29, far 3.02-3.10 at 2,500 vertices;
     // near 0.21-0.26, far 2.84-3.02 at 1,000). One layer, every face turned the same way.
-    const TwoSheets s = two_sheets(r.mesh);
-    MESSAGE("view area: near " << s.near << " of 0.36, far " << s.far << " of 3.36");
-    CHECK(s.between == 0);
-    CHECK(s.near > 0.5 * 0.36);
-    CHECK(s.near < 1.1 * 0.36);
-    CHECK(s.far > 0.8 * 3.36);
-    CHECK(s.far < 1.1 * 3.36);
-    CHECK((s.facing_up == 0 || s.facing_up == r.mesh.triangles.size()));
+    check_two_sheets(r.mesh, 0.36, 0.5, 3.36, 0.8);
 }
 
 TEST_CASE("topology open on a view where a far part shows under a near one across the view: both whole") {
@@ -446,12 +452,5 @@ TEST_CASE("topology open on a view where a far part shows under a near one acros
     CHECK(mesh_topology(r.mesh).manifold);
     // Seen on clouds 1-10, seeds 1-2: near 0.20-0.29, far 3.62-3.73 at 2,500 vertices; near
     // 0.18-0.26, far 3.41-3.58 at 1,000. Without the layers: near 0-0.05 (at 2,500).
-    const TwoSheets s = two_sheets(r.mesh);
-    MESSAGE("view area: near " << s.near << " of 0.36, far " << s.far << " of 4.0");
-    CHECK(s.between == 0);
-    CHECK(s.near > 0.4 * 0.36);
-    CHECK(s.near < 1.1 * 0.36);
-    CHECK(s.far > 0.75 * 4.0);
-    CHECK(s.far < 1.1 * 4.0);
-    CHECK((s.facing_up == 0 || s.facing_up == r.mesh.triangles.size()));
+    check_two_sheets(r.mesh, 0.36, 0.4, 4.0, 0.75);
 }
