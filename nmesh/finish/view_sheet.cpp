@@ -109,12 +109,12 @@ IndexedMesh view_sheet(const Mesh& mesh, const PointGrid& cloud, const CloudView
         depth[i] = dot(positions[i], d);
         across[i] = {double(dot(positions[i], u)), double(dot(positions[i], v))};
     }
-    // One triangulation: `plane` the members' positions across a direction; the kept triangles'
-    // vertices marked used; the sheet, cut (empty when fewer than kOpenMinFaces are kept).
     // A learnt vertex off the cloud (on the closed mesh's tube round a sheet's edge, or sagging
     // between two layers) is not on the surface and is never triangulated: it counts as used.
     std::vector<char> used(positions.size(), 0);
     for (std::size_t i = 0; i < positions.size(); ++i) used[i] = far(positions[i]);
+    // One triangulation: `plane` the members' positions across a direction. Returns the sheet,
+    // cut (empty when fewer than kOpenMinFaces triangles are kept), and marks its vertices used.
     const auto triangulate = [&](const std::vector<std::uint32_t>& members, const std::vector<Point2d>& plane) {
         IndexedMesh sub;
         if (members.size() < 3) return sub;
