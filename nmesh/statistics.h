@@ -34,6 +34,10 @@ struct Statistics {
     std::uint64_t membrane_patches = 0;
     std::uint64_t handles = 0;
     std::uint64_t membrane_faces_removed = 0;
+    // Bridges (nmesh/learn/bridges.h): parts reached across a thin unsupported neck taken away,
+    // and their vertices (and their necks') removed, at the same searches.
+    std::uint64_t bridges = 0;
+    std::uint64_t bridge_vertices_removed = 0;
     // Topology open (nmesh/finish/open_surface.h): faces taken off as the second sheet of a
     // double layer (facing away from a partial view), faces taken off as far from every point,
     // and faces taken off with the crossing pairs left at the end.

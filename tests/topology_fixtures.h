@@ -1,8 +1,10 @@
-// Indexed meshes of known topology for the boundary and handle tests: tori, tubes and disks.
+// Indexed meshes of known topology for the boundary, handle and bridge tests: tori, tubes, disks
+// and closed surfaces of revolution.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 #include "nmesh/indexed_mesh.h"
 
@@ -45,6 +47,52 @@ inline IndexedMesh fan_disk(std::uint32_t n) {
         m.positions.push_back({std::cos(a), std::sin(a), 0});
     }
     for (std::uint32_t i = 0; i < n; ++i) m.triangles.push_back({0, 1 + i, 1 + (i + 1) % n});
+    return m;
+}
+
+// A ring of a surface of revolution about the z axis: its height, radius and vertex count.
+struct Ring {
+    float z, r;
+    std::uint32_t n;
+};
+
+// The closed surface of revolution through `rings` (bottom to top), with a pole below the first
+// at `z_bottom` and one above the last at `z_top`; rings of different counts are zipped by angle.
+// Faces point outward.
+inline IndexedMesh revolution(const std::vector<Ring>& rings, float z_bottom, float z_top) {
+    IndexedMesh m;
+    const float two_pi = 6.2831853f;
+    m.positions.push_back({0, 0, z_bottom});
+    std::vector<std::uint32_t> first;
+    for (const Ring& g : rings) {
+        first.push_back(std::uint32_t(m.positions.size()));
+        for (std::uint32_t i = 0; i < g.n; ++i) {
+            const float a = two_pi * float(i) / float(g.n);
+            m.positions.push_back({g.r * std::cos(a), g.r * std::sin(a), g.z});
+        }
+    }
+    const std::uint32_t top = std::uint32_t(m.positions.size());
+    m.positions.push_back({0, 0, z_top});
+    const Ring& r0 = rings.front();
+    for (std::uint32_t i = 0; i < r0.n; ++i) m.triangles.push_back({0, first[0] + (i + 1) % r0.n, first[0] + i});
+    for (std::size_t k = 0; k + 1 < rings.size(); ++k) {
+        const std::uint32_t na = rings[k].n, nb = rings[k + 1].n, a0 = first[k], b0 = first[k + 1];
+        std::uint32_t i = 0, j = 0;
+        while (i < na || j < nb) {
+            // Advance on the ring whose next vertex comes first by angle.
+            const bool on_a = j == nb || (i < na && float(i + 1) / float(na) <= float(j + 1) / float(nb));
+            if (on_a) {
+                m.triangles.push_back({a0 + i % na, a0 + (i + 1) % na, b0 + j % nb});
+                ++i;
+            } else {
+                m.triangles.push_back({a0 + i % na, b0 + (j + 1) % nb, b0 + j % nb});
+                ++j;
+            }
+        }
+    }
+    const Ring& rl = rings.back();
+    const std::uint32_t l0 = first.back();
+    for (std::uint32_t i = 0; i < rl.n; ++i) m.triangles.push_back({top, l0 + i, l0 + (i + 1) % rl.n});
     return m;
 }
 

@@ -19,22 +19,6 @@ struct Patch {
     float radius() const { return float(std::sqrt(area / 3.14159265358979)); }
 };
 
-struct FaceData {
-    Vec3 centroid;
-    Vec3 vector_area;
-    float longest_edge = 0.0f;
-};
-
-FaceData face_data(const Mesh& m, Face f) {
-    const Halfedge h = m.halfedge(f);
-    const Vec3 a = m.position(m.from(h)), b = m.position(m.to(h)), c = m.position(m.to(m.next(h)));
-    FaceData d;
-    d.centroid = (a + b + c) * (1.0f / 3.0f);
-    d.vector_area = cross(b - a, c - a) * 0.5f;
-    d.longest_edge = std::sqrt(std::max({squared_distance(a, b), squared_distance(b, c), squared_distance(c, a)}));
-    return d;
-}
-
 // Whether the segment pq meets a face outside the two patches (brute force: a few calls per run).
 bool segment_blocked(const Mesh& m, const Vec3& p, const Vec3& q, const std::vector<char>& in_pair) {
     for (std::uint32_t f = 0; f < m.face_capacity(); ++f) {
@@ -109,54 +93,21 @@ void mark_neighbourhood(const Mesh& m, const std::vector<std::uint32_t>& vertice
     }
 }
 
-// Whether the cloud surrounds the line through `middle` along `axis` (unit): in each of
-// kDirections directions across it, a cloud point within `gap` of the ray within `reach`.
-// A bore or a ring's hole is walled all round; the gap between two legs or two strands of a knot
-// is open on two sides.
-bool walled_round(const PointGrid& cloud, const Vec3& middle, const Vec3& axis, float reach, float gap) {
-    constexpr int kDirections = 8;
-    const Vec3 helper = std::fabs(axis.x) < 0.9f ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-    const Vec3 e1 = normalized(cross(axis, helper)), e2 = cross(axis, e1);
-    const float gap2 = gap * gap;
-    for (int k = 0; k < kDirections; ++k) {
-        const float angle = 6.2831853f * float(k) / float(kDirections);
-        const Vec3 dir = e1 * std::cos(angle) + e2 * std::sin(angle);
-        bool hit = false;
-        for (float t = gap; t <= reach && !hit; t += gap)
-            hit = cloud.nearest_squared_distance(middle + dir * t) <= gap2;
-        if (!hit) return false;
-    }
-    return true;
-}
-
 }  // namespace
 
-HandleSearch open_handles(Mesh& mesh, const PointGrid& cloud) {
+HandleSearch open_handles(Mesh& mesh, const PointGrid& cloud, const FaceSupport& support) {
     HandleSearch out;
     if (!mesh.has_faces() || mesh.has_boundary() || cloud.size() == 0) return out;
     const std::uint32_t nf = mesh.face_capacity();
-    std::vector<FaceData> data(nf);
-    double area = 0.0, edges = 0.0;
-    std::uint32_t alive = 0;
-    for (std::uint32_t f = 0; f < nf; ++f) {
-        if (mesh.is_removed(Face(f))) continue;
-        data[f] = face_data(mesh, Face(f));
-        area += norm(data[f].vector_area);
-        edges += data[f].longest_edge;
-        ++alive;
-    }
-    if (alive == 0) return out;
+    if (support.alive == 0) return out;
+    const std::vector<FaceData>& data = support.data;
+    const std::vector<char>& unsupported = support.unsupported;
     BoundingBox box;
     for (std::uint32_t v = 0; v < mesh.vertex_capacity(); ++v)
         if (!mesh.is_removed(Vertex(v))) box.extend(mesh.position(Vertex(v)));
     const float smallest_hole = kMinHoleRadius * float(box.diagonal());
-    const float mean_edge = float(edges / alive);
-    const float spacing = float(std::sqrt(area / double(cloud.size())));
-    const float far = std::max(kUnsupportedEdges * mean_edge, kUnsupportedSpacings * spacing);
+    const float far = support.far;
     const float far2 = far * far;
-    std::vector<char> unsupported(nf, 0);
-    for (std::uint32_t f = 0; f < nf; ++f)
-        if (!mesh.is_removed(Face(f))) unsupported[f] = cloud.nearest_squared_distance(data[f].centroid) > far2;
 
     // Patches: edge-connected unsupported faces.
     std::vector<Patch> patches;

@@ -9,10 +9,9 @@
 // tube (Mesh::join_loops): a handle, whose wall the learning then pulls onto the hole's wall.
 //
 // Choices (docs/algorithm.md, "Topology"):
-//   - a face is unsupported when its centroid is farther from the cloud than kUnsupportedEdges
-//     times the faces' mean longest edge and kUnsupportedSpacings point spacings (the spacing: the
-//     square root of the mesh area per cloud point), so a coarse mesh or a sparse scan is not
-//     taken for a hole;
+//   - a face is unsupported as face_support.h says (farther from the cloud than a mean longest
+//     edge and two point spacings, about), so a coarse mesh or a sparse scan is not taken for a
+//     hole;
 //   - a patch counts when it has at least kMinFaces faces, is cap-like (its vector area at least
 //     kMinFlatness of its area: a fold or a web between two legs, which faces both ways, is not
 //     a cap) and spans a disc of radius at least kMinHoleRadius of the mesh's bounding-box
@@ -32,6 +31,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "nmesh/learn/face_support.h"
 #include "nmesh/mesh/mesh.h"
 #include "nmesh/spatial/point_grid.h"
 
@@ -45,14 +45,12 @@ struct HandleSearch {
     std::vector<std::uint32_t> touched_vertices;  // alive vertices whose one-ring changed
 };
 
-inline constexpr float kUnsupportedEdges = 0.8f;
-inline constexpr float kUnsupportedSpacings = 2.0f;
 inline constexpr std::uint32_t kMinFaces = 6;
 inline constexpr float kMinFlatness = 0.5f;
 inline constexpr float kMinHoleRadius = 0.03f;
 
 // `mesh`: closed, with its face index; `cloud`: the nearest-point index over the same (normalised)
-// points the mesh learns. O(F log F + pairs x F).
-HandleSearch open_handles(Mesh& mesh, const PointGrid& cloud);
+// points the mesh learns; `support`: face_support(mesh, cloud), as the mesh is. O(F log F + pairs x F).
+HandleSearch open_handles(Mesh& mesh, const PointGrid& cloud, const FaceSupport& support);
 
 }  // namespace nmesh

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "nmesh/learn/bridges.h"
 #include "nmesh/learn/handles.h"
 #include "nmesh/spatial/cloud_sample.h"
 #include "nmesh/util/float4.h"
@@ -553,12 +554,27 @@ void NeuralMesh::reseed(std::uint64_t stream) {
     rng_ = Random(params_.seed ^ (stream * 0xd1b54a32d192ed03ull));
 }
 
-// The handle search needs the face index, which the loop does without; it is built for the
-// search and dropped after it (the mesh is closed again either way).
-std::uint32_t NeuralMesh::learn_handles() {
+// The searches need the face index, which the loop does without; it is built for them and
+// dropped after them (the mesh is closed again either way). The face support is computed once
+// for both, and again only when the bridges' collapses changed the mesh.
+std::uint32_t NeuralMesh::learn_topology() {
     if (!cloud_index_) return 0;
     mesh_.build_faces();
-    const HandleSearch found = open_handles(mesh_, *cloud_index_);
+    FaceSupport support = face_support(mesh_, *cloud_index_);
+    const BridgeSearch bridges = find_bridges(mesh_, *cloud_index_, support);
+    if (bridges.bridges > 0) {
+        mesh_.drop_faces();
+        const std::uint32_t refused = collapse_flagged(mesh_, bridges.flagged, [&](Vertex gone, Vertex kept) {
+            rings_.refresh_around(mesh_, kept);
+            grid_.remove(gone.idx);
+            activity_.remove(gone.idx);
+        });
+        stats_.bridges += bridges.bridges;
+        stats_.bridge_vertices_removed += bridges.flagged_count - refused;
+        mesh_.build_faces();
+        support = face_support(mesh_, *cloud_index_);
+    }
+    const HandleSearch found = open_handles(mesh_, *cloud_index_, support);
     mesh_.drop_faces();
     for (std::uint32_t v : found.removed_vertices) {
         grid_.remove(v);

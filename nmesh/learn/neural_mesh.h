@@ -58,11 +58,14 @@ public:
     void remove_inactive();
     // Section 4: the edge swap around vertex v.
     void swap_around(Vertex v);
-    // Beyond the paper (Parameters::topology closed): a handle for each pair of membranes that
-    // spans a through-hole of the cloud (nmesh/learn/handles.h). Returns the handles made. Deletes
-    // the vertices the cuts take (from the grid and the activity index too) and refreshes the
-    // rings that changed. O(n log n).
-    std::uint32_t learn_handles();
+    // Beyond the paper (Parameters::topology closed and open): the topology searches. First each
+    // part of the mesh that reaches its data only across a thin neck of unsupported faces is
+    // taken away by edge collapses, for the learning to grow it again from the body
+    // (nmesh/learn/bridges.h); then a handle is made for each pair of membranes that spans a
+    // through-hole of the cloud (nmesh/learn/handles.h). The vertices removed leave the grid and
+    // the activity index too, and the rings that changed are refreshed. Returns the handles made.
+    // O(n log n), plus O(P) when a bridge is found.
+    std::uint32_t learn_topology();
     // Caches the rings of vertices with at most n neighbours only (RingCache::set_limit); the
     // others are read from the half-edge mesh. The results are the same bits either way; for
     // tests of both paths. O(n).

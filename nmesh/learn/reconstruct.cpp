@@ -183,7 +183,7 @@ constexpr std::uint32_t kOutputRetries = 3;
 // stays is 6-8 faces at 256 vertices and doubles with the mesh.
 std::size_t twist_tolerance(std::uint32_t n) { return std::max<std::size_t>(2, n / 256); }
 
-// Topology closed or open: the handle search each time the mesh grows by half, from
+// Topology closed or open: the bridge and handle searches each time the mesh grows by half, from
 // kFirstHandleSearch vertices up to kLastHandleSearchPercent % of the target, and at that size
 // itself (where the steps stop short of it), so that a handle made has the rest of the growth to
 // learn its wall.
@@ -248,7 +248,7 @@ void learn_to_target(NeuralMesh& engine, std::size_t cloud_size, const Parameter
         engine.iterate();
         const std::uint32_t n = engine.mesh().n_vertices();
         if (params.topology != Topology::sphere && n >= at.next_handle_search) {
-            if (n <= last_search) engine.learn_handles();
+            if (n <= last_search) engine.learn_topology();
             const std::uint32_t next = at.next_handle_search + at.next_handle_search / 2;
             at.next_handle_search = at.next_handle_search < last_search && next > last_search ? last_search : next;
         }

@@ -80,6 +80,8 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << "  \"membrane_patches\": " << s.membrane_patches << ",\n"
       << "  \"handles\": " << s.handles << ",\n"
       << "  \"membrane_faces_removed\": " << s.membrane_faces_removed << ",\n"
+      << "  \"bridges\": " << s.bridges << ",\n"
+      << "  \"bridge_vertices_removed\": " << s.bridge_vertices_removed << ",\n"
       << "  \"layer_faces_removed\": " << s.layer_faces_removed << ",\n"
       << "  \"open_faces_removed\": " << s.open_faces_removed << ",\n"
       << "  \"crossing_faces_removed\": " << s.crossing_faces_removed << ",\n"
