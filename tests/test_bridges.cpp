@@ -116,7 +116,7 @@ TEST_CASE("the dumbbell fixture: a closed genus-0 manifold whose neck the body's
     CHECK(f.unsupported <= 100);
 }
 
-TEST_CASE("a sac across an unsupported neck whose data joins the body's is a bridge: its vertices and the neck's are flagged") {
+TEST_CASE("a sac across an unsupported neck, its data joined to the body's, is a bridge: it and its neck are flagged") {
     Mesh mesh = Mesh::from_indexed(dumbbell());
     const std::uint32_t before = mesh.n_vertices();
     const Found f = search(mesh, dumbbell_cloud(true, 0.0f, false));

@@ -158,8 +158,8 @@ BridgeSearch find_bridges(const Mesh& mesh, const PointGrid& cloud, const FaceSu
         // part inside its data, a leg, is walled round, and fills out as the mesh grows).
         Vec3 sac_centre, neck_centre;
         double neck_area = 0.0;
-        for (const std::uint32_t f : sac) sac_centre += support.data[f].centroid * float(norm(support.data[f].vector_area));
-        sac_centre = sac_centre * float(1.0 / area);
+        for (const std::uint32_t f : sac)
+            sac_centre += support.data[f].centroid * float(norm(support.data[f].vector_area));
         for (const std::uint32_t n : necks_met)
             for (const std::uint32_t f : necks.faces[n]) {
                 const double a = norm(support.data[f].vector_area);
@@ -167,6 +167,7 @@ BridgeSearch find_bridges(const Mesh& mesh, const PointGrid& cloud, const FaceSu
                 neck_area += a;
             }
         if (neck_area <= 0.0 || area <= 0.0) continue;
+        sac_centre = sac_centre * float(1.0 / area);
         neck_centre = neck_centre * float(1.0 / neck_area);
         const Vec3 axis = normalized(sac_centre - neck_centre);
         if (squared_norm(axis) == 0.0f ||
