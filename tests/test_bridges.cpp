@@ -102,11 +102,19 @@ std::uint32_t flagged_above(const Mesh& mesh, const BridgeSearch& s, float z) {
 
 }  // namespace
 
-TEST_CASE("the dumbbell fixture: a closed genus-0 manifold whose neck the body's data leaves unsupported") {
-    const Mesh mesh = Mesh::from_indexed(dumbbell());
+TEST_CASE("the dumbbell fixture: a closed genus-0 manifold facing outward, its neck unsupported by the data") {
+    const IndexedMesh shape = dumbbell();
+    const Mesh mesh = Mesh::from_indexed(shape);
     const ManifoldCheck c = check_manifold(mesh);
     INFO(c.error);
     REQUIRE(c.sphere());
+    // Facing outward: the signed volume is about the body's and the sac's, positive.
+    double volume = 0.0;
+    for (const auto& t : shape.triangles)
+        volume += double(dot(shape.positions[t[0]], cross(shape.positions[t[1]], shape.positions[t[2]]))) / 6.0;
+    const double spheres = 4.0 / 3.0 * 3.14159265 * (0.125 + double(kSacRadius) * kSacRadius * kSacRadius);
+    CHECK(volume > 0.95 * spheres);
+    CHECK(volume < 1.05 * spheres);
     const Found f = search(mesh, dumbbell_cloud(true, 0.0f, false));
     // The setting the other cases rely on: the support distance well below the neck's length and
     // the rod's distance from the neck, and part of the neck unsupported.
