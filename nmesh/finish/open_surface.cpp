@@ -3,6 +3,7 @@
 #include "nmesh/finish/cloud_normals.h"
 #include "nmesh/finish/mesh_pieces.h"
 #include "nmesh/geometry/triangle_intersection.h"
+#include "nmesh/mesh/face_regions.h"
 
 #include <algorithm>
 #include <array>
@@ -33,30 +34,14 @@ FaceGeometry geometry(const Mesh& m, Face f) {
 // faces left marked.
 template <class Keep>
 std::uint32_t keep_regions(const Mesh& mesh, std::vector<char>& marked, Keep&& keep) {
-    const std::uint32_t nf = mesh.face_capacity();
-    std::vector<char> seen(nf, 0);
-    std::vector<std::uint32_t> region, stack;
     std::uint32_t kept = 0;
-    for (std::uint32_t f = 0; f < nf; ++f) {
-        if (!marked[f] || seen[f]) continue;
-        region.clear();
-        stack.assign(1, f);
-        seen[f] = 1;
-        while (!stack.empty()) {
-            const std::uint32_t x = stack.back();
-            stack.pop_back();
-            region.push_back(x);
-            for (Halfedge h = mesh.halfedge(Face(x)), s = h;;) {
-                const Face u = mesh.face(Mesh::twin(h));
-                if (u.valid() && marked[u.idx] && !seen[u.idx]) seen[u.idx] = 1, stack.push_back(u.idx);
-                if ((h = mesh.next(h)) == s) break;
-            }
-        }
-        if (keep(region))
-            kept += std::uint32_t(region.size());
-        else
-            for (std::uint32_t x : region) marked[x] = 0;
-    }
+    for_each_face_region(mesh, [&](std::uint32_t f) { return marked[f] != 0; },
+                         [&](const std::vector<std::uint32_t>& region) {
+                             if (keep(region))
+                                 kept += std::uint32_t(region.size());
+                             else
+                                 for (std::uint32_t x : region) marked[x] = 0;
+                         });
     return kept;
 }
 
@@ -117,26 +102,10 @@ IndexedMesh cut_faces(const Mesh& m, const std::vector<char>& marked, std::uint3
         }
     }
     // The edge-connected pieces of the kept faces; the small ones go.
-    std::vector<char> seen(nf, 0);
-    std::vector<std::uint32_t> piece, stack;
-    for (std::uint32_t f = 0; f < nf; ++f) {
-        if (m.is_removed(Face(f)) || gone[f] || seen[f]) continue;
-        piece.clear();
-        seen[f] = 1;
-        stack.assign(1, f);
-        while (!stack.empty()) {
-            const std::uint32_t x = stack.back();
-            stack.pop_back();
-            piece.push_back(x);
-            for (Halfedge h = m.halfedge(Face(x)), s = h;;) {
-                const Face u = m.face(Mesh::twin(h));
-                if (u.valid() && !gone[u.idx] && !seen[u.idx]) seen[u.idx] = 1, stack.push_back(u.idx);
-                if ((h = m.next(h)) == s) break;
-            }
-        }
+    for_each_face_region(m, [&](std::uint32_t f) { return !gone[f]; }, [&](const std::vector<std::uint32_t>& piece) {
         if (piece.size() < kOpenMinFaces)
             for (std::uint32_t x : piece) gone[x] = 1;
-    }
+    });
     IndexedMesh out;
     std::vector<std::uint32_t> index(nv, kInvalidIndex);
     for (std::uint32_t f = 0; f < nf; ++f) {

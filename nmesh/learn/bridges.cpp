@@ -1,20 +1,18 @@
 #include "nmesh/learn/bridges.h"
 
 #include <algorithm>
-#include <array>
-#include <memory>
 #include <cmath>
+#include <memory>
 #include <numeric>
 #include <unordered_map>
 
+#include "nmesh/finish/mesh_queries.h"
+#include "nmesh/mesh/face_regions.h"
 
 namespace nmesh {
 namespace {
 
-std::array<Vertex, 3> corners(const Mesh& mesh, Face f) {
-    const Halfedge h = mesh.halfedge(f);
-    return {mesh.from(h), mesh.to(h), mesh.to(mesh.next(h))};
-}
+using finish_detail::corners;
 
 // Edge-connected regions of the faces for which `member` is true: the region of each face slot
 // (kInvalidIndex for the others) and the regions' face lists.
@@ -27,27 +25,10 @@ template <class Member>
 Regions regions(const Mesh& mesh, Member&& member) {
     Regions r;
     r.of.assign(mesh.face_capacity(), kInvalidIndex);
-    std::vector<std::uint32_t> stack;
-    for (std::uint32_t f = 0; f < mesh.face_capacity(); ++f) {
-        if (mesh.is_removed(Face(f)) || !member(f) || r.of[f] != kInvalidIndex) continue;
-        const std::uint32_t id = std::uint32_t(r.faces.size());
-        r.faces.emplace_back();
-        r.of[f] = id;
-        stack.assign(1, f);
-        while (!stack.empty()) {
-            const std::uint32_t g = stack.back();
-            stack.pop_back();
-            r.faces[id].push_back(g);
-            for (Halfedge h = mesh.halfedge(Face(g)), s = h;;) {
-                const Halfedge t = Mesh::twin(h);
-                if (!mesh.is_boundary(t)) {
-                    const std::uint32_t u = mesh.face(t).idx;
-                    if (member(u) && r.of[u] == kInvalidIndex) r.of[u] = id, stack.push_back(u);
-                }
-                if ((h = mesh.next(h)) == s) break;
-            }
-        }
-    }
+    for_each_face_region(mesh, member, [&](const std::vector<std::uint32_t>& faces) {
+        for (const std::uint32_t f : faces) r.of[f] = std::uint32_t(r.faces.size());
+        r.faces.push_back(faces);
+    });
     return r;
 }
 

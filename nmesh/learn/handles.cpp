@@ -6,6 +6,7 @@
 
 #include "nmesh/bounding_box.h"
 #include "nmesh/geometry/triangle_intersection.h"
+#include "nmesh/mesh/face_regions.h"
 
 namespace nmesh {
 namespace {
@@ -111,32 +112,22 @@ HandleSearch open_handles(Mesh& mesh, const PointGrid& cloud, const FaceSupport&
 
     // Patches: edge-connected unsupported faces.
     std::vector<Patch> patches;
-    std::vector<char> seen(nf, 0);
-    std::vector<std::uint32_t> stack;
-    for (std::uint32_t f = 0; f < nf; ++f) {
-        if (!unsupported[f] || seen[f]) continue;
-        Patch p;
-        stack.assign(1, f);
-        seen[f] = 1;
-        while (!stack.empty()) {
-            const std::uint32_t g = stack.back();
-            stack.pop_back();
-            p.faces.push_back(g);
-            const double a = norm(data[g].vector_area);
-            p.area += a;
-            p.vector_area += data[g].vector_area;
-            p.centre += data[g].centroid * float(a);
-            for (Halfedge h = mesh.halfedge(Face(g)), s = h;;) {
-                const std::uint32_t u = mesh.face(Mesh::twin(h)).idx;
-                if (unsupported[u] && !seen[u]) seen[u] = 1, stack.push_back(u);
-                if ((h = mesh.next(h)) == s) break;
-            }
-        }
-        if (p.area <= 0.0) continue;
-        p.centre = p.centre * float(1.0 / p.area);
-        if (p.faces.size() >= kMinFaces && norm(p.vector_area) >= kMinFlatness * p.area && p.radius() >= smallest_hole)
-            patches.push_back(std::move(p));
-    }
+    for_each_face_region(mesh, [&](std::uint32_t f) { return unsupported[f] != 0; },
+                         [&](const std::vector<std::uint32_t>& faces) {
+                             Patch p;
+                             p.faces = faces;
+                             for (const std::uint32_t g : faces) {
+                                 const double a = norm(data[g].vector_area);
+                                 p.area += a;
+                                 p.vector_area += data[g].vector_area;
+                                 p.centre += data[g].centroid * float(a);
+                             }
+                             if (p.area <= 0.0) return;
+                             p.centre = p.centre * float(1.0 / p.area);
+                             if (p.faces.size() >= kMinFaces && norm(p.vector_area) >= kMinFlatness * p.area &&
+                                 p.radius() >= smallest_hole)
+                                 patches.push_back(std::move(p));
+                         });
     out.patches = std::uint32_t(patches.size());
 
     // Pairs, nearest first.
