@@ -359,6 +359,63 @@ TEST_CASE("cut_unsupported opens a hole the cloud's rim surrounds, and keeps a b
     CHECK(mesh_topology(bump_open).boundary_loops == 1);
 }
 
+TEST_CASE("cut_unsupported takes the rim's long triangles that span the hole, and no supported face") {
+    // A fine sphere whose band 0.7 < z < 0.9 is coarsened, so that the faces round the hole of a
+    // scan without its cap (z < 0.8) are long: some have data near their centroid and an edge
+    // across the hole, as the learning leaves them round a hole in a scan.
+    Mesh m = Mesh::from_indexed(test::icosphere(4));
+    m.build_faces();
+    const auto in_band = [&](Vertex v) { return m.position(v).z > 0.7f && m.position(v).z < 0.9f; };
+    for (int pass = 0; pass < 3; ++pass)
+        for (std::uint32_t e = 0; e < m.edge_capacity(); ++e) {
+            if (m.is_removed(Edge(e))) continue;
+            const Halfedge h = Mesh::halfedge(Edge(e), 0);
+            if (!in_band(m.from(h)) || !in_band(m.to(h)) || !m.can_collapse(h)) continue;
+            const Vec3 mid = normalized((m.position(m.from(h)) + m.position(m.to(h))) * 0.5f);
+            const Vertex kept = m.to(h);
+            m.collapse(h);
+            m.set_position(kept, mid);
+        }
+    require_valid(m);
+    const PointCloud ball = test::sphere_cloud(30000, 1.0f, {}, 21);
+    std::vector<Vec3> capless;
+    for (const Vec3& p : ball.points)
+        if (p.z < 0.8f) capless.push_back(p);
+    const PointGrid grid(capless);
+    const IndexedMesh whole = m.to_indexed();
+    const float limit = kOpenEdges * typical_edge(whole);
+    // The triangles of a mesh with an edge midpoint farther from the data than 1.5 limits, of
+    // which those with their centroid within a limit (the ones the centroid alone cannot see).
+    const auto spanning = [&](const IndexedMesh& mesh, bool centroid_near) {
+        std::size_t n = 0;
+        for (const auto& t : mesh.triangles) {
+            const Vec3 a = mesh.positions[t[0]], b = mesh.positions[t[1]], c = mesh.positions[t[2]];
+            float farthest = 0.0f;
+            for (const Vec3& x : {(a + b) * 0.5f, (b + c) * 0.5f, (c + a) * 0.5f})
+                farthest = std::max(farthest, std::sqrt(grid.nearest_squared_distance(x)));
+            const bool near = std::sqrt(grid.nearest_squared_distance((a + b + c) / 3.0f)) <= limit;
+            n += std::size_t(farthest > 1.5f * limit && (near || !centroid_near));
+        }
+        return n;
+    };
+    REQUIRE(spanning(whole, true) > 0);  // the fixture has the defect
+    OpenReport report;
+    const IndexedMesh open = cut_unsupported(m, capless, report);
+    const MeshTopology t = mesh_topology(open);
+    CHECK(t.manifold);
+    CHECK(t.components == 1);
+    CHECK(t.boundary_loops == 1);
+    CHECK(spanning(open, false) == 0);
+    // Nothing goes where the data is: every face wholly below z = 0.7 stays.
+    const auto top = [](const IndexedMesh& mesh, const std::array<std::uint32_t, 3>& tri) {
+        return std::max({mesh.positions[tri[0]].z, mesh.positions[tri[1]].z, mesh.positions[tri[2]].z});
+    };
+    std::size_t below = 0, kept_below = 0;
+    for (const auto& tri : whole.triangles) below += std::size_t(top(whole, tri) < 0.7f);
+    for (const auto& tri : open.triangles) kept_below += std::size_t(top(open, tri) < 0.7f);
+    CHECK(kept_below == below);
+}
+
 TEST_CASE("cut_crossings: two spheres through each other lose the crossing faces, one alone is kept") {
     const IndexedMesh a = test::icosphere(3), b = test::icosphere(3, {1.2f, 0.0f, 0.0f});
     IndexedMesh both = join_pieces({a, b});

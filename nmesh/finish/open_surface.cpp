@@ -241,6 +241,38 @@ IndexedMesh cut_unsupported(const Mesh& mesh, const PointGrid& cloud, const Clou
         const bool end = view.partial && depth >= kOpenEndDepth && float(ring.size()) >= kOpenRimShare * float(all);
         return hole || end;
     });
+    // The rim of each opening: a face next to a face that goes, whose centroid has data near but
+    // one of its edges spans the hole (the learning leaves few, long triangles round a hole in the
+    // scan, where no samples drew vertices), goes too when an edge's midpoint has no data by the
+    // same test; and so on outwards, until every face at the opening's edge is supported along
+    // its edges.
+    const auto unsupported_at = [&](const Vec3& x) {
+        const NearestPoint p = cloud.find_nearest(x);
+        return std::sqrt(p.squared_distance) >
+               std::max(kOpenEdges * typical, kOpenSpacings * view.rim.spacing[p.index]);
+    };
+    std::vector<std::uint32_t> trim;
+    for (std::uint32_t f = 0; f < nf; ++f)
+        if (far[f]) trim.push_back(f);
+    while (!trim.empty()) {
+        const std::uint32_t f = trim.back();
+        trim.pop_back();
+        Halfedge h = mesh.halfedge(Face(f));
+        for (int i = 0; i < 3; ++i, h = mesh.next(h)) {
+            const Halfedge t = Mesh::twin(h);
+            if (mesh.is_boundary(t)) continue;
+            const std::uint32_t g2 = mesh.face(t).idx;
+            if (far[g2]) continue;
+            Halfedge k = t;
+            bool spans = false;
+            for (int j = 0; j < 3 && !spans; ++j, k = mesh.next(k))
+                spans = unsupported_at((mesh.position(mesh.from(k)) + mesh.position(mesh.to(k))) * 0.5f);
+            if (!spans) continue;
+            far[g2] = 1;
+            ++report.unsupported_faces;
+            trim.push_back(g2);
+        }
+    }
     std::uint32_t removed = 0;
     IndexedMesh out = cut_faces(mesh, far, removed);
     report.removed_unsupported += removed;
