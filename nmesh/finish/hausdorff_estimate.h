@@ -59,11 +59,18 @@ public:
     // The estimate for `mesh`, which differs from the mesh given to the constructor only in the
     // triangles `changed` (and in triangles that no longer exist).
     float after(const Mesh& mesh, const std::vector<Face>& changed) const {
+        // The changed triangles' corners, each with its distance to the cloud measured once (a
+        // corner has about six triangles round it).
         std::vector<std::uint8_t> affected(mesh.vertex_capacity(), 0);
+        std::vector<float> at_vertex(mesh.vertex_capacity(), 0.0f);
         for (const Face f : changed)
             if (!mesh.is_removed(f))
-                for (const Vertex v : corners(mesh, f)) affected[v.idx] = 1;
-        float value = surface_side(mesh, changed, value_);
+                for (const Vertex v : corners(mesh, f))
+                    if (!affected[v.idx]) {
+                        affected[v.idx] = 1;
+                        at_vertex[v.idx] = to_cloud(mesh.position(v));
+                    }
+        float value = surface_side(mesh, changed, value_, &at_vertex);
         const std::vector<Vertex> verts = alive_vertices(mesh);
         const std::unique_ptr<PointGrid> index = position_index(mesh, verts);
         const std::vector<Vec3>& points = cloud_.points();
