@@ -45,10 +45,7 @@ inline std::unique_ptr<PointGrid> position_index(const Mesh& mesh, const std::ve
     return std::make_unique<PointGrid>(pos);
 }
 
-inline std::array<Vertex, 3> corners(const Mesh& mesh, Face f) {
-    const Halfedge h = mesh.halfedge(f);
-    return {mesh.from(h), mesh.to(h), mesh.to(mesh.next(h))};
-}
+inline std::array<Vertex, 3> corners(const Mesh& mesh, Face f) { return mesh.face_vertices(f); }
 
 // Twice the area of a face, along its normal.
 inline Vec3 area_vector(const Mesh& mesh, Face f) {

@@ -215,7 +215,7 @@ IndexedMesh cut_unsupported(const Mesh& mesh, const PointGrid& cloud, const Clou
         g[f] = geometry(mesh, Face(f));
         const NearestPoint p = cloud.find_nearest(g[f].centroid);
         away[f] = std::sqrt(p.squared_distance);
-        far[f] = away[f] > std::max(kOpenEdges * typical, kOpenSpacings * view.rim.spacing[p.index]);
+        far[f] = no_data(p, view, typical);
     }
     // Which regions of far faces are holes in the scan (see open_surface.h): measured round the
     // region's deepest face, within kOpenRimReach times its distance to the cloud.
@@ -246,11 +246,6 @@ IndexedMesh cut_unsupported(const Mesh& mesh, const PointGrid& cloud, const Clou
     // scan, where no samples drew vertices), goes too when an edge's midpoint has no data by the
     // same test; and so on outwards, until every face at the opening's edge is supported along
     // its edges.
-    const auto unsupported_at = [&](const Vec3& x) {
-        const NearestPoint p = cloud.find_nearest(x);
-        return std::sqrt(p.squared_distance) >
-               std::max(kOpenEdges * typical, kOpenSpacings * view.rim.spacing[p.index]);
-    };
     std::vector<std::uint32_t> trim;
     for (std::uint32_t f = 0; f < nf; ++f)
         if (far[f]) trim.push_back(f);
@@ -266,7 +261,8 @@ IndexedMesh cut_unsupported(const Mesh& mesh, const PointGrid& cloud, const Clou
             Halfedge k = t;
             bool spans = false;
             for (int j = 0; j < 3 && !spans; ++j, k = mesh.next(k))
-                spans = unsupported_at((mesh.position(mesh.from(k)) + mesh.position(mesh.to(k))) * 0.5f);
+                spans = no_data(cloud.find_nearest((mesh.position(mesh.from(k)) + mesh.position(mesh.to(k))) * 0.5f),
+                                view, typical);
             if (!spans) continue;
             far[g2] = 1;
             ++report.unsupported_faces;

@@ -42,6 +42,7 @@
 //     sheet as it was).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -84,6 +85,13 @@ struct CloudView {
     Vec3 direction;             //   the direction towards the scanner (orient_normals)
     std::vector<std::uint32_t> part;  // and per point its connected part (orient_normals)
 };
+
+// Whether a place whose nearest cloud point is `near` has no data: farther from it than
+// kOpenEdges typical edges and kOpenSpacings local spacings (the spacing at that point).
+inline bool no_data(const NearestPoint& near, const CloudView& view, float typical_edge) {
+    const float limit = std::max(kOpenEdges * typical_edge, kOpenSpacings * view.rim.spacing[near.index]);
+    return near.squared_distance > limit * limit;
+}
 
 // `cloud`: the nearest-point index over the points the mesh was learnt from; `spacing`: a first
 // guess of their spacing (the size of the rim's cells). O(n k) for n points with k neighbours.

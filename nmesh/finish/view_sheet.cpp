@@ -93,11 +93,7 @@ IndexedMesh view_sheet(const Mesh& mesh, const PointGrid& cloud, const CloudView
         positions.push_back(mesh.position(Vertex(i)));
     }
     // 3. The triangles over no data marked, and cut off; 4. the passes.
-    auto far = [&](const Vec3& p) {
-        const NearestPoint q = cloud.find_nearest(p);
-        const float limit = std::max(kOpenEdges * typical, kOpenSpacings * view.rim.spacing[q.index]);
-        return q.squared_distance > limit * limit;
-    };
+    auto far = [&](const Vec3& p) { return no_data(cloud.find_nearest(p), view, typical); };
     auto over_gap = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
         const float longest = std::max({distance(a, b), distance(b, c), distance(c, a)});
         return longest > kSheetMaxEdges * typical || far((a + b + c) * (1.0f / 3.0f)) || far((a + b) * 0.5f) ||

@@ -6,13 +6,10 @@
 #include <numeric>
 #include <unordered_map>
 
-#include "nmesh/finish/mesh_queries.h"
 #include "nmesh/mesh/face_regions.h"
 
 namespace nmesh {
 namespace {
-
-using finish_detail::corners;
 
 // Edge-connected regions of the faces for which `member` is true: the region of each face slot
 // (kInvalidIndex for the others) and the regions' face lists.
@@ -99,7 +96,7 @@ BridgeSearch find_bridges(const Mesh& mesh, const PointGrid& cloud, const FaceSu
     std::unique_ptr<CloudCells> cells;  // built for the first candidate
     std::vector<char> in_body(mesh.vertex_capacity(), 0);
     for (const std::uint32_t f : parts.faces[body])
-        for (const Vertex v : corners(mesh, Face(f))) in_body[v.idx] = 1;
+        for (const Vertex v : mesh.face_vertices(Face(f))) in_body[v.idx] = 1;
     for (std::uint32_t i = 0; i < parts.faces.size(); ++i) {
         const std::vector<std::uint32_t>& sac = parts.faces[i];
         if (i == body || sac.size() < kMinSacFaces || double(sac.size()) > kMaxSacShare * support.alive) continue;
@@ -161,7 +158,7 @@ BridgeSearch find_bridges(const Mesh& mesh, const PointGrid& cloud, const FaceSu
             continue;
         ++out.bridges;
         const auto flag = [&](std::uint32_t f) {
-            for (const Vertex v : corners(mesh, Face(f)))
+            for (const Vertex v : mesh.face_vertices(Face(f)))
                 if (!in_body[v.idx] && !out.flagged[v.idx]) out.flagged[v.idx] = 1, ++out.flagged_count;
         };
         for (const std::uint32_t f : sac) flag(f);

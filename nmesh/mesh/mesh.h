@@ -53,6 +53,7 @@
 // outgoing half-edges of a vertex are visited CCW by ccw_rotated(h) = twin(prev(h)).
 #pragma once
 
+#include <array>
 #include <cassert>
 #include <cstdint>
 #include <limits>
@@ -247,6 +248,11 @@ public:
     Vec3 face_normal(Face f) const;                               // unit (zero for a degenerate face)
     float face_area(Face f) const;
     Vec3 face_centroid(Face f) const;
+    // The three corners of f, from halfedge(f) round (needs the face index).
+    std::array<Vertex, 3> face_vertices(Face f) const {
+        const Halfedge h = halfedge(f);
+        return {from(h), to(h), to(next(h))};
+    }
     // The centroid of h's triangle, with or without the face index: summed from its smallest
     // half-edge, so the same bits from any of the three (and the same as face_centroid(face(h))
     // after build_faces()).
