@@ -12,7 +12,8 @@ namespace nmesh {
 // What topology the learning may give the surface (Parameters::topology).
 enum class Topology {
     sphere,  // the paper's algorithm: the tetrahedron's genus 0, bit for bit as it always was
-    closed,  // handles learnt from the data (nmesh/learn/handles.h); a closed surface of that genus
+    closed,  // the cloud's genus: its solid's (nmesh/learn/solid_start.h), or handles learnt from the
+             // data as the mesh grows (nmesh/learn/handles.h); a closed surface of that genus
     open,    // as closed, then opened where the cloud has no data (nmesh/finish/open_surface.h)
 };
 // "sphere" / "closed" / "open", and back; parse_topology throws ParameterError naming the choices.

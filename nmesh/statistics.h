@@ -28,6 +28,11 @@ struct Statistics {
     // Outputs of a small target (at most 4,096 vertices) with crossing triangles or inward faces,
     // learnt again from the last checkpoint before the target.
     std::uint64_t output_retries = 0;
+    // The learning's start (topology closed and open, nmesh/learn/solid_start.h): the genus of
+    // the solid the cloud walls round, when it walls one (-1 when it does not), and the start
+    // mesh's vertices (4: the tetrahedron; more: the solid's surface, when its genus is above 0).
+    int solid_genus = -1;
+    std::uint64_t start_vertices = 4;
     // Topology learning (Parameters::topology closed, nmesh/learn/handles.h): searches made,
     // cap-like unsupported patches found over them, handles made, faces cut out for them.
     std::uint64_t topology_checks = 0;

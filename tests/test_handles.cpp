@@ -3,6 +3,7 @@
 // the results stay valid closed manifolds of the genus they report, and the mode's name parses.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <set>
 #include <vector>
@@ -29,13 +30,24 @@ int checked_genus(const IndexedMesh& m) {
     return c.genus;
 }
 
+// A torus sample with a scanner's hole in its outer wall, wider than the solid's largest offset
+// closes (solid_start.h): the cloud walls no solid round, so the learning starts from the
+// tetrahedron and the handle search is what finds the through-hole.
+PointCloud leaky_torus() {
+    PointCloud c = test::torus_cloud(20000);
+    c.points.erase(std::remove_if(c.points.begin(), c.points.end(),
+                                  [](const Vec3& p) { return squared_distance(p, Vec3{1.35f, 0, 0}) < 0.25f * 0.25f; }),
+                   c.points.end());
+    return c;
+}
+
 }  // namespace
 
 TEST_CASE("topology closed learns the handle of a torus; sphere mode cannot") {
-    const PointCloud torus = test::torus_cloud(20000);
+    const PointCloud torus = leaky_torus();
     int with_handle = 0;
-    // The sanitizer build (sanitized.h) learns two of them, seeds 3 and 4; seeds 1 and 2 learn
-    // none (seeds 1-8: the handle for 3, 4, 6, 7, 8).
+    // The sanitizer build (sanitized.h) learns two of them, seeds 3 and 4 (seeds 1-8: the handle
+    // for 1, 2, 3, 5, 7 and 8, none for 4; seed 6 makes a second, spurious one).
     const std::uint64_t first = test::kSanitized ? 3 : 1, seeds = test::kSanitized ? 2 : 4;
     for (std::uint64_t seed = first; seed < first + seeds; ++seed) {
         CAPTURE(seed);
@@ -48,6 +60,8 @@ TEST_CASE("topology closed learns the handle of a torus; sphere mode cannot") {
         CHECK(checked_genus(sphere.mesh) == 0);
         p.topology = Topology::closed;
         const Result closed = reconstruct(torus, p);
+        CHECK(closed.stats.solid_genus == -1);  // the search's case, not the solid start's
+        CHECK(closed.stats.start_vertices == 4);
         const int genus = checked_genus(closed.mesh);
         CHECK(genus == closed.stats.genus);
         CHECK(std::uint64_t(genus) == closed.stats.handles);

@@ -55,9 +55,9 @@ constexpr const char* kReconstructUsage =
     "  --cvs N                a vertex split every N iterations (default 100)\n"
     "  --cec N                inactive vertices removed every N * n iterations (default 20)\n"
     "  --no-edge-swap         basic Neural Meshes (no edge swap after collapses)\n"
-    "  --topology MODE        sphere: genus 0, the paper's algorithm; closed: handles learnt where the\n"
-    "                         cloud has through-holes, a closed surface of that genus; open: as closed,\n"
-    "                         then opened where the cloud has no data (default closed)\n"
+    "  --topology MODE        sphere: genus 0, the paper's algorithm; closed: a closed surface of the\n"
+    "                         cloud's genus (its solid's, or handles learnt where it has through-holes);\n"
+    "                         open: as closed, then opened where the cloud has no data (default closed)\n"
     "  --no-fold-guard        let step 3 fold the winner's triangles, as the paper's algorithm does\n"
     "  --no-finish            no finishing stage: the learnt mesh as it is (with --no-fold-guard and\n"
     "                         --topology sphere, exactly as the paper's algorithm leaves it)\n"
@@ -133,8 +133,12 @@ void print_summary(const Result& r, const std::string& output) {
                  (unsigned long long)s.splits, (unsigned long long)s.collapses, (unsigned long long)s.collapses_refused,
                  (unsigned long long)s.swaps_kept, (unsigned long long)s.swaps_tried, s.seconds,
                  s.seconds > 0 ? s.iterations / s.seconds / 1e6 : 0.0, finishing.c_str());
-    std::fprintf(stderr, "nmesh: genus %d, %llu boundary loops (%llu handles learnt)\n", s.genus,
-                 (unsigned long long)s.boundary_loops, (unsigned long long)s.handles);
+    if (s.start_vertices > 4)
+        std::fprintf(stderr, "nmesh: genus %d, %llu boundary loops (learnt from the surface of the cloud's solid, genus %d)\n",
+                     s.genus, (unsigned long long)s.boundary_loops, s.solid_genus);
+    else
+        std::fprintf(stderr, "nmesh: genus %d, %llu boundary loops (%llu handles learnt)\n", s.genus,
+                     (unsigned long long)s.boundary_loops, (unsigned long long)s.handles);
     if (s.twist_retries > 0 || s.output_retries > 0)
         std::fprintf(stderr,
                      "nmesh: learnt again from a checkpoint: %llu retries where part of the mesh had turned "

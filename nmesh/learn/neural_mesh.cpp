@@ -39,23 +39,29 @@ private:
 
 }  // namespace
 
+// Choice: the initial tetrahedron is regular, centred on the cloud's bounding box, with a
+// circumradius of a quarter of the box's diagonal: inside the data for a closed scan, and large
+// enough that all four vertices win signals from the start.
 NeuralMesh::NeuralMesh(PointSpan points, const BoundingBox& bounds, const Parameters& params,
                        const PointTransform& transform)
+    : NeuralMesh(points, bounds, params, transform,
+                 Mesh::tetrahedron(bounds.center(), float(bounds.diagonal() * 0.25))) {}
+
+NeuralMesh::NeuralMesh(PointSpan points, const BoundingBox& bounds, const Parameters& params,
+                       const PointTransform& transform, Mesh start)
     : points_(points),
       transform_(transform),
       params_(params),
       grid_(bounds),
       activity_(params.alpha),
       rng_(params.seed) {
-    // Choice: the initial tetrahedron is regular, centred on the cloud's bounding box, with a
-    // circumradius of a quarter of the box's diagonal: inside the data for a closed scan, and
-    // large enough that all four vertices win signals from the start.
-    mesh_ = Mesh::tetrahedron(bounds.center(), float(bounds.diagonal() * 0.25));
+    mesh_ = std::move(start);
     // The loop names no faces (the swap finds a triangle by its half-edges), so the mesh keeps
     // no face index while it learns: 32 of its 96 bytes per vertex (Mesh::drop_faces).
-    mesh_.drop_faces();
+    if (mesh_.has_faces()) mesh_.drop_faces();
     reserve_target();
-    for (std::uint32_t v = 0; v < 4; ++v) {
+    for (std::uint32_t v = 0; v < mesh_.vertex_capacity(); ++v) {
+        if (mesh_.is_removed(Vertex(v))) continue;
         grid_.insert(v, mesh_.position(Vertex(v)));
         activity_.add(v, 0.0);
     }
@@ -73,7 +79,8 @@ NeuralMesh::NeuralMesh(PointSpan points, const BoundingBox& bounds, const Parame
     ring_.reserve(64);
     ring2_.reserve(64);
     updated_.resize(16);
-    for (std::uint32_t v = 0; v < 4; ++v) rings_.refresh(mesh_, Vertex(v));
+    for (std::uint32_t v = 0; v < mesh_.vertex_capacity(); ++v)
+        if (!mesh_.is_removed(Vertex(v))) rings_.refresh(mesh_, Vertex(v));
     swap_ring_.reserve(64);
     swap_dm_.reserve(64);
 }
@@ -574,7 +581,7 @@ std::uint32_t NeuralMesh::learn_topology() {
         mesh_.build_faces();
         support = face_support(mesh_, *cloud_index_);
     }
-    const HandleSearch found = open_handles(mesh_, *cloud_index_, support);
+    const HandleSearch found = search_handles_ ? open_handles(mesh_, *cloud_index_, support) : HandleSearch();
     mesh_.drop_faces();
     for (std::uint32_t v : found.removed_vertices) {
         grid_.remove(v);

@@ -44,6 +44,11 @@ public:
     // nearest-point index is laid out on it). `params` must be valid.
     NeuralMesh(PointSpan points, const BoundingBox& bounds, const Parameters& params,
                const PointTransform& transform = {});
+    // The same engine starting from `start` (a closed mesh in the transformed space, with
+    // faces or not) instead of the tetrahedron: topology closed's start from the solid's surface
+    // (solid_start.h).
+    NeuralMesh(PointSpan points, const BoundingBox& bounds, const Parameters& params, const PointTransform& transform,
+               Mesh start);
 
     // One iteration of steps 1-6, followed by step 7 or 8 when it is due.
     void iterate();
@@ -66,6 +71,9 @@ public:
     // the activity index too, and the rings that changed are refreshed. Returns the handles made.
     // O(n log n), plus O(P) when a bridge is found.
     std::uint32_t learn_topology();
+    // The handle search off from here on (the bridges stay): for a start whose genus the cloud's
+    // solid already gave (solid_start.h), where a search would only add handles.
+    void keep_genus() { search_handles_ = false; }
     // Caches the rings of vertices with at most n neighbours only (RingCache::set_limit); the
     // others are read from the half-edge mesh. The results are the same bits either way; for
     // tests of both paths. O(n).
@@ -149,6 +157,7 @@ private:
     // vertex found before this iteration moves anything, its squared distance then, and the
     // vertices this iteration moved (the winner and its ring).
     bool early_valid_ = false;
+    bool search_handles_ = true;  // learn_topology() runs the handle search (keep_genus())
     std::uint32_t early_ = 0;
     float early_d2_ = 0.0f;
     std::uint32_t n_moved_ = 0;

@@ -18,6 +18,7 @@
 #include "nmesh/geometry/triangle_intersection.h"
 #include "nmesh/metrics/orientation.h"
 #include "nmesh/learn/neural_mesh.h"
+#include "nmesh/learn/solid_start.h"
 #include "nmesh/learn/twist_check.h"
 
 namespace nmesh {
@@ -453,7 +454,16 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
     Parameters learning = params;
     learning.fold_guard = params.fold_guard && !is_flat(cloud);
     // On the heap, so that it can be destroyed, and its memory freed, as soon as the learning ends.
-    auto engine = std::make_unique<NeuralMesh>(cloud, norm.bounds, learning, norm.transform);
+    // Topology closed and open: from the solid's surface when the cloud walls a solid with
+    // handles round (solid_start.h); otherwise, and in sphere mode, from the tetrahedron.
+    SolidStart solid;
+    if (params.topology != Topology::sphere) solid = solid_start(cloud, norm.transform, params.target_vertices);
+    const std::uint64_t start_vertices = solid.mesh ? solid.mesh->n_vertices() : 4;
+    std::unique_ptr<NeuralMesh> engine =
+        solid.mesh ? std::make_unique<NeuralMesh>(cloud, norm.bounds, learning, norm.transform, std::move(*solid.mesh))
+                   : std::make_unique<NeuralMesh>(cloud, norm.bounds, learning, norm.transform);
+    if (solid.mesh) engine->keep_genus();
+    solid.mesh.reset();
     engine->set_profiling(callbacks.profile);
     Reporter reporter(callbacks, engine, params.target_vertices, start);
 
@@ -475,6 +485,8 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
         result = Result();
         result.cancelled = reporter.cancelled();
         result.stats = engine->stats();
+        result.stats.solid_genus = solid.solid_genus;
+        result.stats.start_vertices = start_vertices;
         // The last progress report: the learning is over.
         if (!result.cancelled) reporter.report(params.settle > 0.0);
         const bool finish = !result.cancelled && params.finish;

@@ -76,6 +76,8 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << "  \"twist_retries\": " << s.twist_retries << ",\n"
       << "  \"twists_kept\": " << s.twists_kept << ",\n"
       << "  \"output_retries\": " << s.output_retries << ",\n"
+      << "  \"solid_genus\": " << s.solid_genus << ",\n"
+      << "  \"start_vertices\": " << s.start_vertices << ",\n"
       << "  \"topology_checks\": " << s.topology_checks << ",\n"
       << "  \"membrane_patches\": " << s.membrane_patches << ",\n"
       << "  \"handles\": " << s.handles << ",\n"

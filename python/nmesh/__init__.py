@@ -197,9 +197,10 @@ def reconstruct(
         (float64, integers, a non-contiguous view, a list) is converted to float32 once.
     vertices: the target vertex count (>= 4). The defaults of the other parameters are Table 2 of
         the Neural Meshes ES paper; the command-line tool's --help explains each.
-    topology: "closed" (handles learnt where the cloud has through-holes; a closed surface of
-        that genus), "sphere" (genus 0: the paper's algorithm) or "open" (as closed, then opened
-        where the cloud has no data); other values raise ValueError.
+    topology: "closed" (a closed surface of the cloud's genus: read from the solid the cloud
+        walls round, or handles learnt where it has through-holes), "sphere" (genus 0: the
+        paper's algorithm) or "open" (as closed, then opened where the cloud has no data); other
+        values raise ValueError.
     alpha_w, alpha_n: learning rates of the winner vertex and of its neighbours.
     alpha: the signal counter decay per iteration.
     cvs: a vertex split every `cvs` iterations.  cec: inactive vertices removed every cec * n.

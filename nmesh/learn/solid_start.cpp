@@ -1,0 +1,428 @@
+#include "nmesh/learn/solid_start.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <iterator>
+#include <tuple>
+#include <unordered_map>
+#include <vector>
+
+#include "nmesh/bounding_box.h"
+
+namespace nmesh {
+
+namespace solid_detail {
+
+void distance_line(const double* f, int n, double* d, int* v, double* z) {
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    // Where the parabolas of q and p cross.
+    auto cross_at = [&](int q, int p) { return ((f[q] + double(q) * q) - (f[p] + double(p) * p)) / (2.0 * (q - p)); };
+    int k = 0;
+    v[0] = 0;
+    z[0] = -kInf;
+    z[1] = kInf;
+    for (int q = 1; q < n; ++q) {
+        double s = cross_at(q, v[k]);
+        while (s <= z[k]) s = cross_at(q, v[--k]);  // stops at k = 0: z[0] is -infinity
+        ++k;
+        v[k] = q;
+        z[k] = s;
+        z[k + 1] = kInf;
+    }
+    k = 0;
+    for (int q = 0; q < n; ++q) {
+        while (z[k + 1] < q) ++k;
+        d[q] = double(q - v[k]) * (q - v[k]) + f[v[k]];
+    }
+}
+
+}  // namespace solid_detail
+
+namespace {
+
+using solid_detail::distance_line;
+
+// The median distance from a point to its nearest other point, over up to 4096 of them (every
+// k-th), found in a hash of cells sorted by key. 0 when no sampled point has a distinct neighbour
+// within its cell's 27.
+float median_spacing(const std::vector<Vec3>& p, const BoundingBox& box) {
+    const std::size_t n = p.size();
+    if (n < 2) return 0.0f;
+    // Cells of about twice the spacing of a surface sample as large as the box allows.
+    const float cell = float(2.0 * box.diagonal() / std::sqrt(double(n)));
+    if (!(cell > 0.0f)) return 0.0f;
+    auto coord = [&](float x, float lo) { return std::int64_t(std::floor((x - lo) / cell)); };
+    auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+        return (std::uint64_t(x & 0x1fffff) << 42) | (std::uint64_t(y & 0x1fffff) << 21) | std::uint64_t(z & 0x1fffff);
+    };
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> cells(n);
+    for (std::size_t i = 0; i < n; ++i)
+        cells[i] = {key(coord(p[i].x, box.min.x), coord(p[i].y, box.min.y), coord(p[i].z, box.min.z)), std::uint32_t(i)};
+    std::sort(cells.begin(), cells.end());
+    const std::size_t stride = std::max<std::size_t>(1, n / 4096);
+    std::vector<float> nearest;
+    for (std::size_t i = 0; i < n; i += stride) {
+        const std::int64_t cx = coord(p[i].x, box.min.x), cy = coord(p[i].y, box.min.y), cz = coord(p[i].z, box.min.z);
+        float best = std::numeric_limits<float>::max();
+        for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz) {
+                    const std::uint64_t k = key(cx + dx, cy + dy, cz + dz);
+                    auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(k, std::uint32_t(0)));
+                    for (; it != cells.end() && it->first == k; ++it) {
+                        const float d2 = squared_distance(p[i], p[it->second]);
+                        if (d2 > 0.0f) best = std::min(best, d2);
+                    }
+                }
+        if (best < std::numeric_limits<float>::max()) nearest.push_back(std::sqrt(best));
+    }
+    if (nearest.empty()) return 0.0f;
+    std::nth_element(nearest.begin(), nearest.begin() + nearest.size() / 2, nearest.end());
+    return nearest[nearest.size() / 2];
+}
+
+// A voxel grid over the cloud: cell states and the linear index of (x, y, z).
+struct Grid {
+    Vec3 origin;
+    float h = 0.0f;
+    std::array<std::uint32_t, 3> dims{};
+    std::uint64_t size() const { return std::uint64_t(dims[0]) * dims[1] * dims[2]; }
+    std::uint32_t index(std::uint32_t x, std::uint32_t y, std::uint32_t z) const {
+        return (z * dims[1] + y) * dims[0] + x;
+    }
+    Vec3 centre(std::uint32_t i) const {
+        const std::uint32_t x = i % dims[0], y = (i / dims[0]) % dims[1], z = i / (dims[0] * dims[1]);
+        return origin + Vec3{float(x), float(y), float(z)} * h;
+    }
+};
+
+// The squared distance, in cells, from each cell's centre to the nearest cell holding a point,
+// clamped at kFar: exact, in three passes of distance_line. O(cells).
+constexpr std::uint8_t kFar = 255;
+std::vector<std::uint8_t> distances(const Grid& g, const std::vector<Vec3>& points) {
+    constexpr double kBig = 1e12;  // no point on the line: far beyond any grid
+    std::vector<double> field(g.size(), kBig);
+    for (const Vec3& q : points) {
+        const Vec3 c = (q - g.origin) * (1.0f / g.h);
+        field[g.index(std::uint32_t(c.x + 0.5f), std::uint32_t(c.y + 0.5f), std::uint32_t(c.z + 0.5f))] = 0.0;
+    }
+    const std::uint32_t longest = std::max({g.dims[0], g.dims[1], g.dims[2]});
+    std::vector<double> line(longest), out(longest), z(longest + 1);
+    std::vector<int> v(longest);
+    const std::uint64_t stride[3] = {1, g.dims[0], std::uint64_t(g.dims[0]) * g.dims[1]};
+    for (int axis = 0; axis < 3; ++axis) {
+        const int n = int(g.dims[axis]);
+        const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+        for (std::uint32_t i = 0; i < g.dims[a]; ++i)
+            for (std::uint32_t j = 0; j < g.dims[b]; ++j) {
+                const std::uint64_t base = i * stride[a] + j * stride[b];
+                for (int q = 0; q < n; ++q) line[q] = field[base + q * stride[axis]];
+                distance_line(line.data(), n, out.data(), v.data(), z.data());
+                for (int q = 0; q < n; ++q) field[base + q * stride[axis]] = out[q];
+            }
+    }
+    std::vector<std::uint8_t> dist(g.size());
+    for (std::size_t i = 0; i < dist.size(); ++i) dist[i] = std::uint8_t(std::min(field[i], double(kFar)));
+    return dist;
+}
+
+enum : std::uint8_t { kFree = 0, kShell = 1, kOutside = 2 };
+
+// The shell (cells within `radius` cells of a point) and the outside (the other cells, flooded
+// 6-connected from the grid's border); the rest stays kFree, the solid's inside. Returns the
+// counts of shell and inside cells.
+std::pair<std::uint64_t, std::uint64_t> classify(const Grid& g, const std::vector<std::uint8_t>& dist, float radius,
+                                                 std::vector<std::uint8_t>& state) {
+    const float r2 = radius * radius;
+    state.resize(g.size());
+    for (std::size_t i = 0; i < state.size(); ++i) state[i] = float(dist[i]) <= r2 ? kShell : kFree;
+    // The grid's border layer is outside (the padding keeps the shell off it); the flood starts
+    // from the free cells next to it, and every cell it pops is inside the border, so its six
+    // neighbours are in the grid.
+    std::vector<std::uint32_t> stack;
+    const std::uint32_t nx = g.dims[0], ny = g.dims[1], nz = g.dims[2];
+    for (std::uint32_t z = 0; z < nz; ++z)
+        for (std::uint32_t y = 0; y < ny; ++y)
+            for (std::uint32_t x = 0; x < nx; ++x) {
+                const bool border = x == 0 || y == 0 || z == 0 || x + 1 == nx || y + 1 == ny || z + 1 == nz;
+                const bool next = !border && (x == 1 || y == 1 || z == 1 || x + 2 == nx || y + 2 == ny || z + 2 == nz);
+                const std::uint32_t i = g.index(x, y, z);
+                if (border) state[i] = kOutside;
+                if (next && state[i] == kFree) state[i] = kOutside, stack.push_back(i);
+            }
+    const std::uint32_t step[6] = {1, std::uint32_t(-1), nx, std::uint32_t(-std::int64_t(nx)), nx * ny,
+                                   std::uint32_t(-std::int64_t(nx) * ny)};
+    while (!stack.empty()) {
+        const std::uint32_t i = stack.back();
+        stack.pop_back();
+        for (const std::uint32_t s : step) {
+            const std::uint32_t j = i + s;
+            if (state[j] == kFree) state[j] = kOutside, stack.push_back(j);
+        }
+    }
+    std::uint64_t shell = 0, inside = 0;
+    for (const std::uint8_t v : state) shell += v == kShell, inside += v == kFree;
+    return {shell, inside};
+}
+
+// The Kuhn triangulation of the grid: six tetrahedra round each cube's diagonal from corner 0 to
+// corner 7 (corner c at (c & 1, c >> 1 & 1, c >> 2 & 1)); they match across the cubes' faces. Its
+// edges are the lattice edges along the seven directions below.
+constexpr int kTets[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
+constexpr int kKuhnEdges[7][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
+
+// The components and the genus of the solid's outer surface (the marching tetrahedra surface of
+// outer_surface()), counted on the grid without building it: its vertices are the Kuhn edges
+// between the solid and the outside, its faces one per tetrahedron with one corner apart from the
+// other three and two per tetrahedron split two and two (E = 3F / 2 on a closed surface); its
+// components are the solid's, joined along the Kuhn edges (the solid has no cavity: whatever the
+// outside does not reach is solid).
+std::pair<std::uint32_t, int> surface_topology(const Grid& g, const std::vector<std::uint8_t>& state) {
+    auto solid = [&](std::uint32_t i) { return state[i] != kOutside; };
+    std::int64_t vertices = 0, faces = 0;
+    for (std::uint32_t z = 0; z < g.dims[2]; ++z)
+        for (std::uint32_t y = 0; y < g.dims[1]; ++y)
+            for (std::uint32_t x = 0; x < g.dims[0]; ++x) {
+                const bool here = solid(g.index(x, y, z));
+                for (const auto& e : kKuhnEdges) {
+                    const std::uint32_t a = x + std::uint32_t(e[0]), b = y + std::uint32_t(e[1]), c = z + std::uint32_t(e[2]);
+                    if (a < g.dims[0] && b < g.dims[1] && c < g.dims[2] && solid(g.index(a, b, c)) != here) ++vertices;
+                }
+                if (x + 1 == g.dims[0] || y + 1 == g.dims[1] || z + 1 == g.dims[2]) continue;
+                bool in[8];
+                int count = 0;
+                for (int k = 0; k < 8; ++k) count += in[k] = solid(g.index(x + (k & 1), y + (k >> 1 & 1), z + (k >> 2 & 1)));
+                if (count == 0 || count == 8) continue;
+                for (const auto& t : kTets) {
+                    const int n = in[t[0]] + in[t[1]] + in[t[2]] + in[t[3]];
+                    faces += n == 2 ? 2 : (n == 1 || n == 3) ? 1 : 0;
+                }
+            }
+    // Components of the solid along the Kuhn edges, both ways.
+    std::vector<char> seen(g.size(), 0);
+    std::vector<std::uint32_t> stack;
+    std::uint32_t components = 0;
+    for (std::uint32_t i = 0; i < g.size(); ++i) {
+        if (seen[i] || !solid(i)) continue;
+        ++components;
+        seen[i] = 1;
+        stack.assign(1, i);
+        while (!stack.empty()) {
+            const std::uint32_t j = stack.back();
+            stack.pop_back();
+            const std::int64_t c[3] = {j % g.dims[0], (j / g.dims[0]) % g.dims[1], j / (g.dims[0] * g.dims[1])};
+            for (const auto& e : kKuhnEdges)
+                for (const int s : {-1, 1}) {
+                    const std::int64_t a = c[0] + s * e[0], b = c[1] + s * e[1], d = c[2] + s * e[2];
+                    if (a < 0 || b < 0 || d < 0 || a >= g.dims[0] || b >= g.dims[1] || d >= g.dims[2]) continue;
+                    const std::uint32_t k = g.index(std::uint32_t(a), std::uint32_t(b), std::uint32_t(d));
+                    if (!seen[k] && solid(k)) seen[k] = 1, stack.push_back(k);
+                }
+        }
+    }
+    const std::int64_t euler = vertices - faces / 2;  // V - E + F with E = 3F / 2
+    return {components, int((2 * std::int64_t(components) - euler) / 2)};
+}
+
+// Marching tetrahedra on the cells' centres, the solid (not outside) against the outside: the
+// outer surface, its vertices at the midpoints of the grid edges it crosses, faces outward. A
+// piecewise linear level set at a value no corner takes, on the Kuhn triangulation of the grid
+// (six tetrahedra round each cube's diagonal, matching across the cubes' faces), so a closed
+// 2-manifold.
+IndexedMesh outer_surface(const Grid& g, const std::vector<std::uint8_t>& state) {
+    IndexedMesh m;
+    std::unordered_map<std::uint64_t, std::uint32_t> at;
+    auto vertex = [&](std::uint32_t a, std::uint32_t b) {
+        const std::uint64_t k = (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+        const auto [it, added] = at.emplace(k, std::uint32_t(m.positions.size()));
+        if (added) m.positions.push_back((g.centre(a) + g.centre(b)) * 0.5f);
+        return it->second;
+    };
+    auto emit = [&](std::uint32_t p, std::uint32_t q, std::uint32_t r, const Vec3& outward) {
+        const Vec3& a = m.positions[p];
+        if (dot(cross(m.positions[q] - a, m.positions[r] - a), outward) < 0.0f) std::swap(q, r);
+        m.triangles.push_back({p, q, r});
+    };
+    for (std::uint32_t z = 0; z + 1 < g.dims[2]; ++z)
+        for (std::uint32_t y = 0; y + 1 < g.dims[1]; ++y)
+            for (std::uint32_t x = 0; x + 1 < g.dims[0]; ++x) {
+                std::uint32_t corner[8];
+                bool in[8];
+                int count = 0;
+                for (int c = 0; c < 8; ++c) {
+                    corner[c] = g.index(x + (c & 1), y + ((c >> 1) & 1), z + ((c >> 2) & 1));
+                    in[c] = state[corner[c]] != kOutside;
+                    count += in[c];
+                }
+                if (count == 0 || count == 8) continue;
+                for (const auto& t : kTets) {
+                    std::uint32_t ins[4], outs[4];
+                    int ni = 0, no = 0;
+                    Vec3 ci, co;
+                    for (int k = 0; k < 4; ++k) {
+                        const std::uint32_t v = corner[t[k]];
+                        if (in[t[k]])
+                            ins[ni++] = v, ci += g.centre(v);
+                        else
+                            outs[no++] = v, co += g.centre(v);
+                    }
+                    if (ni == 0 || no == 0) continue;
+                    const Vec3 outward = co * (1.0f / float(no)) - ci * (1.0f / float(ni));
+                    if (ni == 1 || no == 1) {
+                        const std::uint32_t lone = ni == 1 ? ins[0] : outs[0];
+                        const std::uint32_t* rest = ni == 1 ? outs : ins;
+                        emit(vertex(lone, rest[0]), vertex(lone, rest[1]), vertex(lone, rest[2]), outward);
+                    } else {
+                        const std::uint32_t a = vertex(ins[0], outs[0]), b = vertex(ins[0], outs[1]),
+                                            c = vertex(ins[1], outs[1]), d = vertex(ins[1], outs[0]);
+                        emit(a, b, c, outward);
+                        emit(a, c, d, outward);
+                    }
+                }
+            }
+    return m;
+}
+
+// The grid over `box` with cells `h` across (padded by the largest offset and two cells).
+Grid grid_over(const BoundingBox& box, float h, float pad) {
+    Grid g;
+    g.h = h;
+    g.origin = box.min - Vec3{pad, pad, pad};
+    const Vec3 extent = box.extent() + Vec3{2 * pad, 2 * pad, 2 * pad};
+    g.dims = {std::uint32_t(extent.x / h) + 2, std::uint32_t(extent.y / h) + 2, std::uint32_t(extent.z / h) + 2};
+    return g;
+}
+
+}  // namespace
+
+SolidSurface solid_surface(PointSpan points, const PointTransform& transform) {
+    SolidSurface out;
+    std::vector<Vec3> p(points.size());
+    BoundingBox box;
+    for (std::size_t i = 0; i < p.size(); ++i) box.extend(p[i] = transform(points[i]));
+    const float d = median_spacing(p, box);
+    if (!(d > 0.0f)) return out;
+    out.spacing = d;
+    const float largest = kOffsets[std::size(kOffsets) - 1] * d;
+    Grid g = grid_over(box, kVoxel * d, largest + 2.0f * kVoxel * d);
+    while (g.size() > kMaxVoxels) g = grid_over(box, g.h * 1.25f, largest + 2.0f * g.h * 1.25f);
+    std::vector<std::uint8_t> state;
+    {
+        const std::vector<std::uint8_t> dist = distances(g, p);
+        for (const float offset : kOffsets) {
+            const auto [shell, inside] = classify(g, dist, offset * d / g.h, state);
+            if (double(inside) < kMinInside * double(shell)) continue;
+            out.walled = true;
+            out.offset = offset;
+            break;
+        }
+    }
+    if (!out.walled) return out;
+    std::tie(out.components, out.genus) = surface_topology(g, state);
+    if (out.components != 1 || out.genus <= 0) return out;
+    // Handles that are the grid's and not the cloud's (a tunnel between two cells' corners)
+    // come and go as the grid moves: the same offset on grids shifted by fractions of a cell
+    // must agree, where they wall the solid round too.
+    std::uint32_t agreeing = 0;
+    for (const Vec3& shift : {Vec3{0.5f, 0.5f, 0.5f}, Vec3{0.25f, 0.5f, 0.75f}}) {
+        Grid moved = g;
+        moved.origin = g.origin + shift * g.h;
+        std::vector<std::uint8_t> moved_state;
+        const auto [shell, inside] = classify(moved, distances(moved, p), out.offset * d / g.h, moved_state);
+        if (double(inside) < kMinInside * double(shell)) continue;
+        if (surface_topology(moved, moved_state) != std::make_pair(out.components, out.genus)) {
+            out.stable = false;
+            return out;
+        }
+        ++agreeing;
+    }
+    out.stable = agreeing > 0;
+    if (!out.stable) return out;
+    // The surface from cells twice as large when they give the same topology: a quarter of the
+    // triangles to simplify.
+    const Grid coarse = grid_over(box, 2.0f * g.h, largest + 4.0f * g.h);
+    std::vector<std::uint8_t> coarse_state;
+    classify(coarse, distances(coarse, p), out.offset * d / coarse.h, coarse_state);
+    const bool same = surface_topology(coarse, coarse_state) == std::make_pair(out.components, out.genus);
+    out.surface = same ? outer_surface(coarse, coarse_state) : outer_surface(g, state);
+    return out;
+}
+
+SolidStart solid_start(PointSpan points, const PointTransform& transform, std::uint32_t target) {
+    SolidStart out;
+    const SolidSurface solid = solid_surface(points, transform);
+    if (!solid.walled || solid.components != 1) return out;
+    if (solid.genus > 0 && !solid.stable) return out;
+    out.solid_genus = solid.genus;
+    if (solid.genus <= 0) return out;
+    Mesh mesh = Mesh::from_indexed(solid.surface);
+    mesh.drop_faces();
+    if (!simplify(mesh, start_vertices(target))) return out;
+    // Dense slots: the engine's per-vertex arrays are sized by them.
+    out.mesh = Mesh::from_indexed(mesh.to_indexed());
+    return out;
+}
+
+bool simplify(Mesh& mesh, std::uint32_t n) {
+    // A collapse that would leave a vertex with more neighbours than this waits: the simplified
+    // mesh keeps triangles of even shape (a vertex that absorbs its neighbours one by one grows
+    // a fan of slivers).
+    constexpr std::uint32_t kMaxValence = 10;
+    // Whether moving v to p turns one of its triangles over (the triangles with `skip` stay out:
+    // they go with the collapse).
+    auto turns = [&](Vertex v, Vertex skip, const Vec3& p) {
+        bool bad = false;
+        mesh.for_each_outgoing_cw(v, [&](Halfedge h) {
+            const Vertex x = mesh.to(h), y = mesh.to(mesh.next(h));
+            if (bad || x == skip || y == skip) return;
+            const Vec3 &a = mesh.position(v), &b = mesh.position(x), &c = mesh.position(y);
+            const Vec3 before = cross(b - a, c - a), after = cross(b - p, c - p);
+            bad = dot(before, after) <= 0.1f * std::sqrt(dot(before, before) * dot(after, after));
+        });
+        return bad;
+    };
+    // Passes over the edges, shortest first; a collapse keeps the other collapses of its pass
+    // off the kept vertex's ring, so that each pass thins the mesh evenly.
+    std::vector<std::pair<float, std::uint32_t>> edges;
+    std::vector<char> busy;
+    while (mesh.n_vertices() > n) {
+        edges.clear();
+        for (std::uint32_t e = 0; e < mesh.edge_capacity(); ++e)
+            if (!mesh.is_removed(Edge(e))) {
+                const Halfedge h = Mesh::halfedge(Edge(e), 0);
+                edges.push_back({squared_distance(mesh.position(mesh.from(h)), mesh.position(mesh.to(h))), h.idx});
+            }
+        // The shortest quarter, in order: the rest waits for a later pass.
+        const auto quarter = edges.begin() + std::ptrdiff_t(edges.size() / 4 + 1);
+        std::nth_element(edges.begin(), quarter, edges.end());
+        edges.erase(quarter, edges.end());
+        std::sort(edges.begin(), edges.end());
+        busy.assign(mesh.vertex_capacity(), 0);
+        bool progress = false;
+        for (const auto& [length2, index] : edges) {
+            if (mesh.n_vertices() <= n) break;
+            Halfedge h(index);
+            if (mesh.is_removed(h) || busy[mesh.from(h).idx] || busy[mesh.to(h).idx]) continue;
+            if (!mesh.can_collapse(h)) {
+                h = Mesh::twin(h);
+                if (!mesh.can_collapse(h)) continue;
+            }
+            const Vertex a = mesh.from(h), b = mesh.to(h);
+            if (mesh.valence(a) + mesh.valence(b) > kMaxValence + 4) continue;
+            const Vec3 mid = (mesh.position(a) + mesh.position(b)) * 0.5f;
+            if (turns(a, b, mid) || turns(b, a, mid)) continue;
+            mesh.collapse(h);
+            mesh.set_position(b, mid);
+            busy[b.idx] = 1;
+            mesh.for_each_outgoing_cw(b, [&](Halfedge g) { busy[mesh.to(g).idx] = 1; });
+            progress = true;
+        }
+        if (!progress) return false;
+    }
+    return true;
+}
+
+}  // namespace nmesh

@@ -1,0 +1,79 @@
+// nmesh/learn/solid_start.h — topology closed: the solid a cloud walls round, and its outer
+// surface as the learning's start when it has handles.
+//
+// A mesh grown from a tetrahedron is a sphere, and the searches of handles.h and webs.h turn it
+// into a surface of another genus only by local surgery, which a shape like a knotted tube
+// defeats (a seam where the growth met itself round the tube, a web where two strands cross:
+// docs/algorithm.md, "The solid's surface"). The cloud itself says what the genus is when it
+// walls an inside round: every cell of a voxel grid within an offset of the points is the
+// shell; the cells reached from the grid's border without crossing it are the outside; the rest
+// is the solid. Its outer surface (marching tetrahedra on the grid) has the genus of the object
+// when the offset closes the gaps between samples and not those between parts.
+//
+// Choices:
+//   - lengths are in units of the median distance from a point to its nearest other point
+//     (d, measured on a sample of the points): the voxels are d across, and the offsets tried
+//     are kOffsets d, smallest first;
+//   - an offset leaks when the solid is no more than its shell (its inside, the cells of the
+//     solid outside the shell, fewer than kMinInside of the shell's): the outside came in through
+//     a hole of the scan (the bunny's base) or between samples. A larger offset is tried; when
+//     all leak, the solid is unknown and the learning starts from the tetrahedron;
+//   - the grid has at most kMaxVoxels cells (larger voxels for a cloud that would need more).
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <optional>
+
+#include "nmesh/indexed_mesh.h"
+#include "nmesh/mesh/mesh.h"
+#include "nmesh/point_span.h"
+#include "nmesh/spatial/point_transform.h"
+
+namespace nmesh {
+
+inline constexpr float kOffsets[] = {3.0f, 4.0f, 6.0f, 8.0f, 12.0f};
+inline constexpr float kVoxel = 2.0f;
+inline constexpr double kMinInside = 0.02;
+inline constexpr std::uint64_t kMaxVoxels = std::uint64_t(1) << 25;
+
+struct SolidSurface {
+    bool walled = false;        // an offset that does not leak was found
+    float offset = 0.0f;        // that offset, in units of d
+    float spacing = 0.0f;       // d, in transformed units
+    std::uint32_t components = 0;
+    int genus = -1;             // of the outer surface (summed over its components)
+    // When the genus is above 0: the grids shifted by fractions of a cell that wall the solid
+    // round at the same offset (at least one does) give the same components and genus.
+    bool stable = false;
+    IndexedMesh surface;        // the outer surface (faces outward), when stable
+};
+
+// The solid `points` (through `transform`) wall round, and its outer surface. O(P + voxels).
+SolidSurface solid_surface(PointSpan points, const PointTransform& transform);
+
+// The learning's start for topology closed and open: the solid's outer surface simplified to
+// start_vertices(target) vertices, when `points` wall a solid of genus above 0 round (one
+// component); no mesh otherwise (the learning starts from the tetrahedron, as the paper's).
+struct SolidStart {
+    int solid_genus = -1;       // of the solid, when the points wall one round (one component)
+    std::optional<Mesh> mesh;   // the start, dense slots, faces outward
+};
+SolidStart solid_start(PointSpan points, const PointTransform& transform, std::uint32_t target);
+// Half the target, at most kMaxStart.
+inline constexpr std::uint32_t kMaxStart = 2000;
+inline std::uint32_t start_vertices(std::uint32_t target) { return std::min(target / 2, kMaxStart); }
+
+// Simplifies a closed mesh to `n` vertices by edge collapses, the shortest edge first, each to
+// its midpoint, skipping those the link condition refuses or that would turn a face over. Keeps
+// the genus. Returns false when it stops above n (no collapse left).
+bool simplify(Mesh& mesh, std::uint32_t n);
+
+namespace solid_detail {
+// The squared distance transform of one line (Felzenszwalb and Huttenlocher's lower envelope of
+// parabolas): d[q] = min over p of f[p] + (q - p)^2 for q in [0, n), n >= 1. `v` and `z` are
+// scratch of n and n + 1 elements. O(n).
+void distance_line(const double* f, int n, double* d, int* v, double* z);
+}  // namespace solid_detail
+
+}  // namespace nmesh

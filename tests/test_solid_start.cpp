@@ -1,0 +1,175 @@
+// The solid a cloud walls round (nmesh/learn/solid_start.h): its genus against clouds of known
+// topology, the leaks and the grid's own tunnels it refuses, the simplification that keeps the
+// genus, and the learning that starts from it.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <string>
+#include <utility>
+
+#include "cloud_fixtures.h"
+#include "mesh_fixtures.h"
+#include "sanitized.h"
+#include "topology_fixtures.h"
+#include "nmesh/bounding_box.h"
+#include "nmesh/learn/solid_start.h"
+#include "nmesh/mesh/mesh_check.h"
+#include "nmesh/reconstruct.h"
+
+using namespace nmesh;
+
+namespace {
+
+// The solid of `cloud` in the frame reconstruct() learns in (centred, diagonal 1).
+SolidSurface solid_of(const PointCloud& cloud) {
+    const BoundingBox box = bounding_box(PointSpan(cloud.points));
+    return solid_surface(PointSpan(cloud.points), PointTransform{box.center(), float(1.0 / box.diagonal())});
+}
+
+// Six times the signed volume of a closed mesh (positive when its faces point outward).
+double signed_volume(const IndexedMesh& m) {
+    double v = 0.0;
+    for (const auto& t : m.triangles) v += dot(m.positions[t[0]], cross(m.positions[t[1]], m.positions[t[2]]));
+    return v / 6.0;
+}
+
+// The genus of a closed mesh, through the validator (which requires one component).
+int genus_of(const IndexedMesh& m) {
+    const ManifoldCheck c = check_manifold(Mesh::from_indexed(m));
+    INFO(c.error);
+    REQUIRE(c.ok);
+    REQUIRE(c.boundary_loops == 0);
+    return c.genus;
+}
+
+}  // namespace
+
+TEST_CASE("the distance transform of a line equals the brute-force minimum") {
+    std::mt19937_64 rng(5);
+    for (int trial = 0; trial < 300; ++trial) {
+        CAPTURE(trial);
+        const int n = 1 + int(rng() % 40);
+        std::vector<double> f(n), d(n), z(n + 1);
+        std::vector<int> v(n);
+        // Points (0), empty cells (far), and other values, as the second and third passes see.
+        for (double& x : f) {
+            const int kind = int(rng() % 3);
+            x = kind == 0 ? 0.0 : kind == 1 ? 1e12 : double(rng() % 50);
+        }
+        solid_detail::distance_line(f.data(), n, d.data(), v.data(), z.data());
+        for (int q = 0; q < n; ++q) {
+            double best = std::numeric_limits<double>::infinity();
+            for (int p = 0; p < n; ++p) best = std::min(best, f[p] + double(q - p) * (q - p));
+            REQUIRE(d[q] == best);
+        }
+    }
+}
+
+TEST_CASE("a torus sample walls a solid of genus 1 round, a sphere sample one of genus 0") {
+    const SolidSurface torus = solid_of(test::torus_cloud(20000));
+    CHECK(torus.walled);
+    CHECK(torus.components == 1);
+    CHECK(torus.genus == 1);
+    CHECK(torus.stable);
+    // The surface counted on the grid is the one built: a closed manifold of that genus, round
+    // the torus (its box a little larger than the data's: the offset).
+    REQUIRE_FALSE(torus.surface.triangles.empty());
+    CHECK(genus_of(torus.surface) == 1);
+
+    const SolidSurface sphere = solid_of(test::sphere_cloud(20000));
+    CHECK(sphere.walled);
+    CHECK(sphere.components == 1);
+    CHECK(sphere.genus == 0);
+    CHECK(sphere.surface.triangles.empty());  // built only for a solid with handles
+}
+
+TEST_CASE("two objects are two components; an open sheet leaks and walls nothing round") {
+    PointCloud two = test::sphere_cloud(8000, 0.3f, {-0.5f, 0, 0});
+    const PointCloud other = test::sphere_cloud(8000, 0.3f, {0.5f, 0, 0}, 11);
+    two.points.insert(two.points.end(), other.points.begin(), other.points.end());
+    const SolidSurface s = solid_of(two);
+    CHECK(s.walled);
+    CHECK(s.components == 2);
+    const BoundingBox box = bounding_box(PointSpan(two.points));
+    const SolidStart start =
+        solid_start(PointSpan(two.points), PointTransform{box.center(), float(1.0 / box.diagonal())}, 2000);
+    CHECK_FALSE(start.mesh.has_value());  // the engine learns one connected surface
+    CHECK(start.solid_genus == -1);
+
+    // A hemisphere: the outside comes in under it at every offset.
+    PointCloud cap = test::sphere_cloud(20000);
+    cap.points.erase(std::remove_if(cap.points.begin(), cap.points.end(), [](const Vec3& p) { return p.z < 0.0f; }),
+                     cap.points.end());
+    CHECK_FALSE(solid_of(cap).walled);
+}
+
+TEST_CASE("tunnels of the grid's own (the ball on thin legs) are refused: the shifted grids disagree") {
+    // The base grid of this genus-0 object reads tunnels where the legs meet the ball (genus 3
+    // at the first offset that walls it round); the same offset on shifted grids reads none.
+    const SolidSurface s = solid_of(test::table_cloud());
+    CHECK(s.walled);
+    CHECK(s.genus > 0);  // the defect the check is there for
+    CHECK_FALSE(s.stable);
+    CHECK(s.surface.triangles.empty());
+    // So the learning starts from the tetrahedron.
+    const BoundingBox box = bounding_box(PointSpan(test::table_cloud().points));
+    const SolidStart start = solid_start(PointSpan(test::table_cloud().points),
+                                         PointTransform{box.center(), float(1.0 / box.diagonal())}, 2000);
+    CHECK_FALSE(start.mesh.has_value());
+    CHECK(start.solid_genus == -1);
+}
+
+TEST_CASE("simplify keeps the genus and reaches the vertex count, every face still facing out") {
+    for (const auto& [name, indexed] : {std::pair<const char*, IndexedMesh>{"torus", test::torus_grid(40, 30)},
+                                        {"sphere", test::icosahedron().to_indexed()}}) {
+        CAPTURE(name);
+        Mesh m = Mesh::from_indexed(indexed);
+        const int genus = check_manifold(m).genus;
+        const std::uint32_t target = std::string(name) == "torus" ? 200 : 8;
+        const double volume_before = signed_volume(m.to_indexed());
+        m.drop_faces();
+        REQUIRE(simplify(m, target));
+        CHECK(m.n_vertices() == target);
+        m.build_faces();
+        const ManifoldCheck c = check_manifold(m);
+        INFO(c.error);
+        REQUIRE(c.ok);
+        CHECK(c.genus == genus);
+        CHECK(signed_volume(m.to_indexed()) > 0.5 * volume_before);
+    }
+    // Below what the link condition allows (a tetrahedron is the smallest closed mesh), it stops.
+    Mesh small = test::icosahedron();
+    small.drop_faces();
+    CHECK_FALSE(simplify(small, 3));
+    CHECK(small.n_vertices() >= 4);
+}
+
+TEST_CASE("topology closed starts a torus sample from its solid's surface: genus 1 on every seed") {
+    const PointCloud torus = test::torus_cloud(20000);
+    const std::uint64_t seeds = test::kSanitized ? 1 : 4;
+    for (std::uint64_t seed = 1; seed <= seeds; ++seed) {
+        CAPTURE(seed);
+        Parameters p;
+        p.target_vertices = 3000;
+        p.seed = seed;
+        const Result r = reconstruct(torus, p);
+        CHECK(r.stats.solid_genus == 1);
+        CHECK(r.stats.start_vertices == start_vertices(3000));
+        CHECK(genus_of(r.mesh) == 1);
+        CHECK(r.stats.handles == 0);  // the start has the handle; the search makes no other
+        CHECK(r.stats.crossing_pairs == 0);
+        CHECK(r.stats.inward_faces == 0);
+        CHECK(r.mesh.positions.size() == 3000);
+    }
+    // The sphere mode never looks at the solid: the paper's tetrahedron.
+    Parameters p;
+    p.target_vertices = 1000;
+    p.topology = Topology::sphere;
+    const Result sphere = reconstruct(torus, p);
+    CHECK(sphere.stats.solid_genus == -1);
+    CHECK(sphere.stats.start_vertices == 4);
+    CHECK(genus_of(sphere.mesh) == 0);
+}
