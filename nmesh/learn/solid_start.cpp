@@ -100,14 +100,15 @@ struct Grid {
 };
 
 // The squared distance, in cells, from each cell's centre to the nearest cell holding a point,
-// clamped at kFar: exact, in three passes of distance_line. O(cells).
+// clamped at kFar: exact, in three passes of distance_line over one byte per cell. Clamping
+// between the passes changes no value below kFar: a clamped cell's candidates are kFar or more.
+// O(cells).
 constexpr std::uint8_t kFar = 255;
 std::vector<std::uint8_t> distances(const Grid& g, const std::vector<Vec3>& points) {
-    constexpr double kBig = 1e12;  // no point on the line: far beyond any grid
-    std::vector<double> field(g.size(), kBig);
+    std::vector<std::uint8_t> dist(g.size(), kFar);
     for (const Vec3& q : points) {
         const Vec3 c = (q - g.origin) * (1.0f / g.h);
-        field[g.index(std::uint32_t(c.x + 0.5f), std::uint32_t(c.y + 0.5f), std::uint32_t(c.z + 0.5f))] = 0.0;
+        dist[g.index(std::uint32_t(c.x + 0.5f), std::uint32_t(c.y + 0.5f), std::uint32_t(c.z + 0.5f))] = 0;
     }
     const std::uint32_t longest = std::max({g.dims[0], g.dims[1], g.dims[2]});
     std::vector<double> line(longest), out(longest), z(longest + 1);
@@ -119,13 +120,11 @@ std::vector<std::uint8_t> distances(const Grid& g, const std::vector<Vec3>& poin
         for (std::uint32_t i = 0; i < g.dims[a]; ++i)
             for (std::uint32_t j = 0; j < g.dims[b]; ++j) {
                 const std::uint64_t base = i * stride[a] + j * stride[b];
-                for (int q = 0; q < n; ++q) line[q] = field[base + q * stride[axis]];
+                for (int q = 0; q < n; ++q) line[q] = dist[base + q * stride[axis]];
                 distance_line(line.data(), n, out.data(), v.data(), z.data());
-                for (int q = 0; q < n; ++q) field[base + q * stride[axis]] = out[q];
+                for (int q = 0; q < n; ++q) dist[base + q * stride[axis]] = std::uint8_t(std::min(out[q], double(kFar)));
             }
     }
-    std::vector<std::uint8_t> dist(g.size());
-    for (std::size_t i = 0; i < dist.size(); ++i) dist[i] = std::uint8_t(std::min(field[i], double(kFar)));
     return dist;
 }
 

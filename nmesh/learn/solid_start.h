@@ -18,7 +18,8 @@
 //     solid outside the shell, fewer than kMinInside of the shell's): the outside came in through
 //     a hole of the scan (the bunny's base) or between samples. A larger offset is tried; when
 //     all leak, the solid is unknown and the learning starts from the tetrahedron;
-//   - the grid has at most kMaxVoxels cells (larger voxels for a cloud that would need more).
+//   - the grid has at most kMaxVoxels cells (larger voxels for a cloud that would need more):
+//     one byte each for the distances, the states and the components' flood, 50 MB at most.
 #pragma once
 
 #include <algorithm>
@@ -35,7 +36,7 @@ namespace nmesh {
 inline constexpr float kOffsets[] = {3.0f, 4.0f, 6.0f, 8.0f, 12.0f};
 inline constexpr float kVoxel = 2.0f;
 inline constexpr double kMinInside = 0.02;
-inline constexpr std::uint64_t kMaxVoxels = std::uint64_t(1) << 25;
+inline constexpr std::uint64_t kMaxVoxels = std::uint64_t(1) << 24;
 
 struct SolidSurface {
     bool walled = false;        // an offset that does not leak was found
