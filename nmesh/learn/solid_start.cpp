@@ -323,22 +323,22 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform) {
     std::tie(out.components, out.genus) = surface_topology(g, state);
     if (out.components != 1 || out.genus <= 0) return out;
     // Handles that are the grid's and not the cloud's (a tunnel between two cells' corners)
-    // come and go as the grid moves: the same offset on grids shifted by fractions of a cell
-    // must agree, where they wall the solid round too.
-    std::uint32_t agreeing = 0;
+    // come and go as the grid moves: a grid shifted by a fraction of a cell must give the same
+    // components and genus, at the same offset or, where it leaks there, at the next one.
+    const float* next = std::find(std::begin(kOffsets), std::end(kOffsets), out.offset) + 1;
     for (const Vec3& shift : {Vec3{0.5f, 0.5f, 0.5f}, Vec3{0.25f, 0.5f, 0.75f}}) {
         Grid moved = g;
         moved.origin = g.origin + shift * g.h;
+        const std::vector<std::uint8_t> dist = distances(moved, p);
         std::vector<std::uint8_t> moved_state;
-        const auto [shell, inside] = classify(moved, distances(moved, p), out.offset * d / g.h, moved_state);
-        if (double(inside) < kMinInside * double(shell)) continue;
-        if (surface_topology(moved, moved_state) != std::make_pair(out.components, out.genus)) {
-            out.stable = false;
-            return out;
+        for (const float offset : {out.offset, next != std::end(kOffsets) ? *next : out.offset}) {
+            const auto [shell, inside] = classify(moved, dist, offset * d / g.h, moved_state);
+            if (double(inside) < kMinInside * double(shell)) continue;
+            out.stable = surface_topology(moved, moved_state) == std::make_pair(out.components, out.genus);
+            break;
         }
-        ++agreeing;
+        if (out.stable) break;
     }
-    out.stable = agreeing > 0;
     if (!out.stable) return out;
     // The surface from cells twice as large when they give the same topology: a quarter of the
     // triangles to simplify.

@@ -44,8 +44,8 @@ struct SolidSurface {
     float spacing = 0.0f;       // d, in transformed units
     std::uint32_t components = 0;
     int genus = -1;             // of the outer surface (summed over its components)
-    // When the genus is above 0: the grids shifted by fractions of a cell that wall the solid
-    // round at the same offset (at least one does) give the same components and genus.
+    // When the genus is above 0: a grid shifted by a fraction of a cell gives the same
+    // components and genus (at the same offset, or at the next where it leaks at that one).
     bool stable = false;
     IndexedMesh surface;        // the outer surface (faces outward), when stable
 };
