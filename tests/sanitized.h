@@ -1,6 +1,6 @@
-// Whether the suite runs in the sanitizer build. CI's sanitizer build also runs the whole-mesh
-// check after every topology operation, which makes a run to n vertices cost O(n^2): tests that
-// learn many meshes run fewer or smaller ones there.
+// Whether the suite runs in the sanitizer build. CI's sanitizer build also checks the mesh after
+// every topology operation (mesh_check.h), and runs several times slower: tests that learn many
+// meshes run fewer or smaller ones there.
 #pragma once
 
 #if defined(NMESH_TEST_SANITIZED)

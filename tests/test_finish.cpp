@@ -282,14 +282,25 @@ TEST_CASE("the estimate's surface side is the true one to within an eighth of an
         if (dot(p, axis) <= 0.6f) scan.push_back(p);
     Mesh mesh = Mesh::from_indexed(icosphere(2));
     // The true largest distance from the surface to the scan, from a dense sampling of every
-    // triangle (64 x 64 sub-triangles; PointGrid's answers are those of a brute-force scan).
+    // triangle (64 x 64 sub-triangles; PointGrid's answers are those of a brute-force scan). A
+    // triangle is skipped when no point of it can beat the largest distance found so far: none
+    // is farther from the scan than a corner's distance plus the triangle's longest edge.
     const PointGrid scan_index(scan);
     const auto true_surface_side = [&](const Mesh& m) {
+        const auto corner_distance = [&](const Vec3& p) { return std::sqrt(scan_index.nearest_squared_distance(p)); };
         float worst = 0.0f;
         for (std::uint32_t f = 0; f < m.face_capacity(); ++f) {
             if (m.is_removed(Face(f))) continue;
             Halfedge h = m.halfedge(Face(f));
             const Vec3 a = m.position(m.from(h)), b = m.position(m.to(h)), c = m.position(m.to(m.next(h)));
+            worst = std::max({worst, corner_distance(a), corner_distance(b), corner_distance(c)});
+        }
+        for (std::uint32_t f = 0; f < m.face_capacity(); ++f) {
+            if (m.is_removed(Face(f))) continue;
+            Halfedge h = m.halfedge(Face(f));
+            const Vec3 a = m.position(m.from(h)), b = m.position(m.to(h)), c = m.position(m.to(m.next(h)));
+            const float longest = std::max({distance(a, b), distance(b, c), distance(c, a)});
+            if (corner_distance(a) + longest < worst) continue;
             for (int i = 0; i <= 64; ++i)
                 for (int j = 0; i + j <= 64; ++j) {
                     const Vec3 q = a + (b - a) * (float(i) / 64.0f) + (c - a) * (float(j) / 64.0f);

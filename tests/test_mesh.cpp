@@ -464,6 +464,65 @@ TEST_CASE("the validator names the first violation") {
     }
 }
 
+TEST_CASE("the local check sees a defect within a ring of the vertices it is given") {
+    // check_around is what the invariant build runs after every operation, with the whole check
+    // only every few operations on a large mesh: each defect the operations could leave near
+    // their vertices is found from the vertex itself and from a neighbour of it.
+    using A = MeshTestAccess;
+    const auto expect_around = [](const Mesh& m, Vertex centre, const char* fragment) {
+        const ManifoldCheck r = check_around(m, {centre});
+        CHECK_FALSE(r.ok);
+        INFO("message: " << r.error);
+        CHECK(r.error.find(fragment) != std::string::npos);
+    };
+    const Mesh valid = icosahedron();
+    for (std::uint32_t v = 0; v < 12; ++v) CHECK(check_around(valid, {Vertex(v)}).ok);
+    // A neighbour of vertex v, for the defect to be one ring away from the centre.
+    const auto neighbour = [](const Mesh& m, std::uint32_t v) { return m.to(m.halfedge(Vertex(v))); };
+    for (const bool from_neighbour : {false, true}) {
+        INFO("from a neighbour: " << from_neighbour);
+        const auto centre = [&](const Mesh& m, std::uint32_t v) { return from_neighbour ? neighbour(m, v) : Vertex(v); };
+        {
+            Mesh m = icosahedron();  // a half-edge retargeted
+            const std::uint32_t v = m.from(Halfedge(0)).idx;
+            A::to(m, 0) = (A::to(m, 0) + 1) % 12;
+            expect_around(m, centre(m, v), "half-edge");
+        }
+        {
+            Mesh m = icosahedron();  // a next cycle of length 2
+            const std::uint32_t v = m.from(Halfedge(0)).idx;
+            A::next(m, A::next(m, 0)) = 0;
+            expect_around(m, centre(m, v), "half-edge");
+        }
+        {
+            Mesh m = icosahedron();  // a vertex whose stored half-edge does not leave it
+            const Vertex c = centre(m, 0);
+            A::vhe(m)[0] = A::vhe(m)[0] ^ 1u;
+            expect_around(m, c, "vertex 0");
+        }
+        {
+            Mesh m = icosahedron();  // a face pointing at another face's half-edge
+            const std::uint32_t v = m.from(m.halfedge(Face(0))).idx;
+            A::fhe(m)[0] = A::fhe(m)[1];
+            expect_around(m, centre(m, v), "face 0");
+        }
+        {
+            Mesh m = icosahedron();  // two holes meeting at vertex 0 only: a bow-tie
+            const Vertex c = centre(m, 0);
+            A::open_face_unchecked(m, m.face(m.find_halfedge(Vertex(0), Vertex(11))).idx);
+            REQUIRE(check_around(m, {c}).ok);
+            A::open_face_unchecked(m, m.face(m.find_halfedge(Vertex(0), Vertex(1))).idx);
+            expect_around(m, c, "bow-tie");
+        }
+    }
+    {
+        Mesh m = icosahedron();  // what only the whole check sees: a free list, the counts
+        A::set_free_vertex_head(m, 2);
+        CHECK(check_around(m, {Vertex(2)}).ok);
+        CHECK_FALSE(check_manifold(m).ok);
+    }
+}
+
 TEST_CASE("the validator sees bow-ties and broken boundaries") {
     using A = MeshTestAccess;
     auto face_at = [](const Mesh& m, std::uint32_t a, std::uint32_t b) {

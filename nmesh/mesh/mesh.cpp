@@ -391,7 +391,7 @@ Vertex Mesh::split(Halfedge to_c, Halfedge to_d, const Vec3& p) {
     vhe_[a.idx] = h.idx;
     if (from(halfedge(b)) != b) vhe_[b.idx] = t.idx;  // b's stored half-edge moved to a
 #ifdef NMESH_CHECK_INVARIANTS
-    assert_manifold(*this, "split");
+    assert_manifold_after(*this, "split", {a, b});
 #endif
     return a;
 }
@@ -451,7 +451,7 @@ void Mesh::collapse(Halfedge h) {
     delete_edge(edge(tp));
     delete_vertex(a);
 #ifdef NMESH_CHECK_INVARIANTS
-    assert_manifold(*this, "collapse");
+    assert_manifold_after(*this, "collapse", {b});
 #endif
 }
 
@@ -485,7 +485,7 @@ FlipRecord Mesh::flip(Halfedge h) {
     if (vhe_[a.idx] == h.idx) vhe_[a.idx] = tn.idx;
     if (vhe_[b.idx] == t.idx) vhe_[b.idx] = hn.idx;
 #ifdef NMESH_CHECK_INVARIANTS
-    assert_manifold(*this, "flip");
+    assert_manifold_after(*this, "flip", {from(h), to(h)});
 #endif
     return r;
 }
@@ -508,7 +508,7 @@ void Mesh::unflip(const FlipRecord& r) {
         fhe_[f1.idx] = r.old_face_he[1].idx;
     }
 #ifdef NMESH_CHECK_INVARIANTS
-    assert_manifold(*this, "unflip");
+    assert_manifold_after(*this, "unflip", {from(h), to(h)});
 #endif
 }
 

@@ -198,7 +198,95 @@ struct Checker {
     }
 };
 
+// The one-ring of vertex v, as check_around describes; appends v's neighbours to `neighbours`.
+template <class Fail>
+bool ring_ok(const Mesh& m, std::uint32_t v, std::vector<std::uint32_t>& neighbours, Fail fail) {
+    const auto halfedge_ok = [&](std::uint32_t h) { return h < m.halfedge_capacity() && !m.is_removed(Halfedge(h)); };
+    const bool named = m.has_faces();
+    const auto faceless = [&](Halfedge h) { return named && m.face(h).idx == kInvalidIndex; };
+    if (v >= m.vertex_capacity() || m.is_removed(Vertex(v))) return fail("vertex ", v, " is not alive");
+    const Halfedge start = m.halfedge(Vertex(v));
+    if (!halfedge_ok(start.idx)) return fail("vertex ", v, ": half-edge ", start.idx, " is not alive");
+    const std::size_t first = neighbours.size();
+    std::uint32_t gaps = 0;
+    Halfedge h = start;
+    do {
+        if (!halfedge_ok(h.idx)) return fail("vertex ", v, ": its rotation reaches half-edge ", h.idx, ", not alive");
+        if (m.from(h).idx != v)
+            return fail("vertex ", v, ": its rotation reaches half-edge ", h.idx, ", which leaves vertex ", m.from(h).idx);
+        const std::uint32_t u = m.to(h).idx;
+        if (u >= m.vertex_capacity() || m.is_removed(Vertex(u)))
+            return fail("half-edge ", h.idx, " points to vertex ", u, ", which is not alive");
+        if (u == v) return fail("half-edge ", h.idx, " is a loop at vertex ", v);
+        for (std::size_t i = first; i < neighbours.size(); ++i)
+            if (neighbours[i] == u) return fail("vertex ", v, ": neighbour ", u, " appears twice (duplicate edge)");
+        neighbours.push_back(u);
+        if (neighbours.size() - first > m.halfedge_capacity())
+            return fail("vertex ", v, ": its rotation does not come back to its stored half-edge");
+        if (faceless(h)) {
+            ++gaps;
+            if (faceless(Mesh::twin(h))) return fail("edge ", h.idx / 2, " has no face on either side");
+        } else {
+            const Halfedge n1 = m.next(h);
+            const Halfedge n2 = halfedge_ok(n1.idx) ? m.next(n1) : Halfedge();
+            if (!halfedge_ok(n1.idx) || !halfedge_ok(n2.idx) || m.next(n2) != h)
+                return fail("half-edge ", h.idx, ": the next cycle does not close after 3 steps");
+            // Each half-edge of the cycle leaves the vertex its predecessor ends at (where it
+            // leaves: its twin's target), and the cycle comes back to v.
+            const Halfedge cycle[3] = {h, n1, n2};
+            for (int i = 0; i < 3; ++i) {
+                const Halfedge x = cycle[i], y = cycle[(i + 1) % 3];
+                if (m.to(x) != m.from(y))
+                    return fail("half-edge ", x.idx, ": inconsistent orientation (it ends at ", m.to(x).idx,
+                                ", its next half-edge leaves ", m.from(y).idx, ")");
+            }
+            if (named) {
+                const std::uint32_t f = m.face(h).idx;
+                if (f >= m.face_capacity() || m.is_removed(Face(f)))
+                    return fail("half-edge ", h.idx, ": face ", f, " is not alive");
+                if (m.face(n1).idx != f || m.face(n2).idx != f)
+                    return fail("half-edge ", h.idx, ": its next cycle spans several faces");
+                const Halfedge fh = m.halfedge(Face(f));
+                if (fh != h && fh != n1 && fh != n2)
+                    return fail("face ", f, ": its half-edge ", fh.idx, " is not in its next cycle");
+            }
+        }
+        h = m.cw_rotated(h);
+    } while (h != start);
+    if (gaps > 1) return fail("vertex ", v, " has ", gaps, " boundary gaps (a bow-tie vertex)");
+    if (gaps == 1 && !faceless(start))
+        return fail("vertex ", v, ": on a boundary, but its stored half-edge ", start.idx, " has a face");
+    const std::size_t valence = neighbours.size() - first;
+    if (valence < 3 - gaps) return fail("vertex ", v, " has valence ", valence);
+    return true;
+}
+
 }  // namespace
+
+ManifoldCheck check_around(const Mesh& mesh, std::initializer_list<Vertex> centres) {
+    std::ostringstream err;
+    bool failed = false;
+    const auto fail = [&](const auto&... parts) {
+        failed = true;
+        (err << ... << parts);
+        return false;
+    };
+    std::vector<std::uint32_t> ring, scratch;
+    for (const Vertex c : centres) {
+        ring.clear();
+        if (!ring_ok(mesh, c.idx, ring, fail)) break;
+        bool ok = true;
+        for (const std::uint32_t u : ring) {
+            scratch.clear();
+            if (!(ok = ring_ok(mesh, u, scratch, fail))) break;
+        }
+        if (!ok) break;
+    }
+    ManifoldCheck r;
+    r.ok = !failed;
+    r.error = err.str();
+    return r;
+}
 
 ManifoldCheck check_manifold(const Mesh& mesh) {
     Checker c{mesh, {}, false};
@@ -216,11 +304,29 @@ ManifoldCheck check_manifold(const Mesh& mesh) {
     return r;
 }
 
-void assert_manifold(const Mesh& mesh, const char* after) {
-    const ManifoldCheck r = check_manifold(mesh);
+namespace {
+
+void abort_if_invalid(const ManifoldCheck& r, const char* after) {
     if (!r.ok) {
         std::fprintf(stderr, "nmesh: invalid mesh after %s: %s\n", after, r.error.c_str());
         std::abort();
+    }
+}
+
+}  // namespace
+
+void assert_manifold(const Mesh& mesh, const char* after) { abort_if_invalid(check_manifold(mesh), after); }
+
+void assert_manifold_after(const Mesh& mesh, const char* after, std::initializer_list<Vertex> centres) {
+    abort_if_invalid(check_around(mesh, centres), after);
+    // The whole check's schedule, per thread (operations on several meshes share it: each
+    // operation still has its local check).
+    constexpr std::uint64_t kEarnedPerOperation = 4096;
+    thread_local std::uint64_t earned = 0;
+    earned += kEarnedPerOperation;
+    if (earned >= 2 * std::uint64_t(mesh.n_edges())) {
+        earned = 0;
+        abort_if_invalid(check_manifold(mesh), after);
     }
 }
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <initializer_list>
 #include <string>
 
 #include "nmesh/mesh/mesh.h"
@@ -41,8 +42,25 @@ struct ManifoldCheck {
 // O(V + E + F) time and memory.
 ManifoldCheck check_manifold(const Mesh& mesh);
 
+// Checks what a local operation can have broken: the one-ring of each of `centres` and of each of
+// their neighbours. Around each such vertex: it is alive and its stored half-edge leaves it; the
+// rotation from that half-edge comes back to it, every half-edge on the way alive, leaving the
+// vertex, paired with its twin, and (with a face) in a next() cycle of 3 within one alive face
+// whose stored half-edge is in the cycle, oriented against its twin; no neighbour twice; at most
+// one boundary gap, which the stored half-edge opens; valence at least 3 (2 on a boundary). It
+// sees neither the free lists, the counts, the connectivity nor the genus: check_manifold does.
+// O(sum over the centres of their neighbours' valences).
+ManifoldCheck check_around(const Mesh& mesh, std::initializer_list<Vertex> centres);
+
 // Aborts with the check's message when the mesh is invalid; `after` names the operation just done.
-// Used after every topology operation when nmesh is built with NMESH_CHECK_INVARIANTS.
 void assert_manifold(const Mesh& mesh, const char* after);
+
+// What nmesh built with NMESH_CHECK_INVARIANTS runs after every local operation (split,
+// collapse, flip, unflip): check_around(centres), and check_manifold whenever the operations
+// since the last whole check have earned it. Each operation earns 4,096 half-edges of checking,
+// and the whole check costs the mesh's half-edges: a mesh of up to 4,096 half-edges (about 680
+// vertices) is checked whole after every operation, a larger one every few, so that a run to n
+// vertices costs O(n) checking rather than O(n^2). Aborts with the message on a violation.
+void assert_manifold_after(const Mesh& mesh, const char* after, std::initializer_list<Vertex> centres);
 
 }  // namespace nmesh
