@@ -36,10 +36,13 @@ struct Parameters {
     // gives the paper's plain algorithm, bit for bit.
     bool fold_guard = true;
     // Beyond the paper: whether the learning opens handles where the data has through-holes
-    // (closed, the default: on genus-0 clouds it finds none and gives the sphere mode's mesh bit
-    // for bit; docs/algorithm.md, "Topology") and leaves the scan's holes open (open). sphere is
-    // the paper's algorithm.
+    // (closed, the default; docs/algorithm.md, "Topology") and leaves the scan's holes open
+    // (open). sphere is the paper's algorithm.
     Topology topology = Topology::closed;
+    // Beyond the paper, topology closed and open: when the cloud walls a solid round, the
+    // learning starts from its outer surface, with its genus and shape (solid_start.h), instead
+    // of growing from a tetrahedron with the handle search. false: always the tetrahedron.
+    bool solid_start = true;
     std::uint64_t seed = 1;  // the same seed and input give a bit-identical mesh
     // Iterations of steps 1-6 (no splits or collapses) run after the target size is reached, so
     // the last vertices settle onto the surface; in units of the final vertex count n

@@ -50,6 +50,8 @@ struct Callbacks {
     // Result::cancelled set.
     std::function<bool(const Progress&)> progress;
     // Vertex counts at which a copy of the mesh is handed to on_snapshot (in input coordinates).
+    // A count below the start's (the solid's surface, Statistics::start_vertices) is handed the
+    // start itself, with its own vertex count.
     std::vector<std::uint32_t> snapshot_vertices;
     std::function<void(std::uint32_t vertices, const IndexedMesh& mesh)> on_snapshot;
     // Measure the time of each phase (Statistics::seconds_*); slows learning a little.

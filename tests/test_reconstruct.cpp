@@ -32,7 +32,8 @@ TEST_CASE("a sphere sample reconstructs to a sphere") {
     for (const Vec3& v : r.mesh.positions) worst = std::max(worst, std::fabs(norm(v) - 1.0f));
     INFO("largest deviation from the radius: " << worst);
     CHECK(worst <= 0.02f);
-    CHECK(r.stats.splits >= 1996);
+    CHECK(r.stats.start_vertices == 1000);  // the solid's surface, simplified to half the target
+    CHECK(r.stats.splits >= 2000 - r.stats.start_vertices);
     CHECK(r.stats.iterations >= r.stats.splits * p.cvs);
     CHECK(r.stats.swaps_tried == r.stats.swaps_kept + r.stats.swaps_undone);
 }
@@ -485,6 +486,7 @@ TEST_CASE("snapshots arrive at the requested sizes, in order") {
     const PointCloud cloud = sphere_cloud(4000);
     Parameters p;
     p.target_vertices = 600;
+    p.solid_start = false;  // from the tetrahedron: every size is passed on the way
     Callbacks cb;
     cb.snapshot_vertices = {500, 10, 100, 600};
     std::vector<std::uint32_t> seen;
@@ -496,6 +498,15 @@ TEST_CASE("snapshots arrive at the requested sizes, in order") {
     const Result r = reconstruct(cloud, p, cb);
     CHECK(seen == std::vector<std::uint32_t>{10, 100, 500, 600});
     CHECK(r.mesh.positions.size() == 600);
+    // From the solid's surface (300 vertices), the smaller sizes are handed the start itself.
+    p.solid_start = true;
+    std::vector<std::size_t> sizes;
+    cb.on_snapshot = [&](std::uint32_t, const IndexedMesh& m) {
+        sizes.push_back(m.positions.size());
+        require_closed_manifold(m);
+    };
+    CHECK(reconstruct(cloud, p, cb).stats.start_vertices == 300);
+    CHECK(sizes == std::vector<std::size_t>{300, 300, 500, 600});
 }
 
 TEST_CASE("basic Neural Meshes runs no edge swap; Neural Meshes ES does") {

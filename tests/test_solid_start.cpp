@@ -83,7 +83,9 @@ TEST_CASE("a torus sample walls a solid of genus 1 round, a sphere sample one of
     CHECK(sphere.walled);
     CHECK(sphere.components == 1);
     CHECK(sphere.genus == 0);
-    CHECK(sphere.surface.triangles.empty());  // built only for a solid with handles
+    CHECK(sphere.stable);  // no handle to doubt
+    REQUIRE_FALSE(sphere.surface.triangles.empty());
+    CHECK(genus_of(sphere.surface) == 0);
 }
 
 TEST_CASE("the torus's genus is read at every sampling density, the shifted grids agreeing") {

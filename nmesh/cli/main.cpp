@@ -58,6 +58,8 @@ constexpr const char* kReconstructUsage =
     "  --topology MODE        sphere: genus 0, the paper's algorithm; closed: a closed surface of the\n"
     "                         cloud's genus (its solid's, or handles learnt where it has through-holes);\n"
     "                         open: as closed, then opened where the cloud has no data (default closed)\n"
+    "  --no-solid-start       closed and open: grow from a tetrahedron, not from the solid the cloud\n"
+    "                         walls round (the handles then come from the handle search)\n"
     "  --no-fold-guard        let step 3 fold the winner's triangles, as the paper's algorithm does\n"
     "  --no-finish            no finishing stage: the learnt mesh as it is (with --no-fold-guard and\n"
     "                         --topology sphere, exactly as the paper's algorithm leaves it)\n"
@@ -167,7 +169,7 @@ int run_reconstruct(int argc, char** argv) {
     }
     const Arguments args(
         argc, argv, 2,
-        {"--no-edge-swap", "--no-fold-guard", "--no-finish", "--quiet", "--ascii", "--save-on-interrupt"},
+        {"--no-edge-swap", "--no-fold-guard", "--no-solid-start", "--no-finish", "--quiet", "--ascii", "--save-on-interrupt"},
         {"-o", "--output", "--vertices", "--alpha-w", "--alpha-n", "--alpha", "--cvs", "--cec", "--seed", "--snapshots",
          "--stats", "--settle", "--finish-rounds", "--fit-rounds", "--index-points", "--topology"});
     if (args.positional().size() != 1) throw UsageError("reconstruct takes one INPUT file");
@@ -207,6 +209,7 @@ int run_reconstruct(int argc, char** argv) {
     p.seed = args.count("--seed", p.seed);
     p.edge_swap = !args.has("--no-edge-swap");
     p.fold_guard = !args.has("--no-fold-guard");
+    p.solid_start = !args.has("--no-solid-start");
     p.finish = !args.has("--no-finish");
     p.finish_rounds = bounded_count("--finish-rounds", p.finish_rounds);
     p.fit_rounds = bounded_count("--fit-rounds", p.fit_rounds);

@@ -454,10 +454,13 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
     Parameters learning = params;
     learning.fold_guard = params.fold_guard && !is_flat(cloud);
     // On the heap, so that it can be destroyed, and its memory freed, as soon as the learning ends.
-    // Topology closed and open: from the solid's surface when the cloud walls a solid with
-    // handles round (solid_start.h); otherwise, and in sphere mode, from the tetrahedron.
+    // Topology closed and open: from the solid's surface when the cloud walls a solid round
+    // (solid_start.h), its genus kept (the handle search off: a handle the solid's offset closes
+    // is narrower than a few point spacings); otherwise, and in sphere mode, from the
+    // tetrahedron, with the handle search.
     SolidStart solid;
-    if (params.topology != Topology::sphere) solid = solid_start(cloud, norm.transform, params.target_vertices);
+    if (params.topology != Topology::sphere && params.solid_start)
+        solid = solid_start(cloud, norm.transform, params.target_vertices);
     const std::uint64_t start_vertices = solid.mesh ? solid.mesh->n_vertices() : 4;
     std::unique_ptr<NeuralMesh> engine =
         solid.mesh ? std::make_unique<NeuralMesh>(cloud, norm.bounds, learning, norm.transform, std::move(*solid.mesh))

@@ -320,12 +320,15 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform) {
     }
     if (!out.walled) return out;
     std::tie(out.components, out.genus) = surface_topology(g, state);
-    if (out.components != 1 || out.genus <= 0) return out;
+    if (out.components != 1 || out.genus < 0) return out;
     // Handles that are the grid's and not the cloud's (a tunnel between two cells' corners)
     // come and go as the grid moves: a grid shifted by a fraction of a cell must give the same
-    // components and genus, at the same offset or, where it leaks there, at the next one.
+    // components and genus, at the same offset or, where it leaks there, at the next one. A
+    // sphere has no handle to doubt.
+    out.stable = out.genus == 0;
     const float* next = std::find(std::begin(kOffsets), std::end(kOffsets), out.offset) + 1;
     for (const Vec3& shift : {Vec3{0.5f, 0.5f, 0.5f}, Vec3{0.25f, 0.5f, 0.75f}}) {
+        if (out.stable) break;
         Grid moved = g;
         moved.origin = g.origin + shift * g.h;
         const std::vector<std::uint8_t> dist = distances(moved, p);
@@ -352,10 +355,8 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform) {
 SolidStart solid_start(PointSpan points, const PointTransform& transform, std::uint32_t target) {
     SolidStart out;
     const SolidSurface solid = solid_surface(points, transform);
-    if (!solid.walled || solid.components != 1) return out;
-    if (solid.genus > 0 && !solid.stable) return out;
+    if (!solid.walled || solid.components != 1 || !solid.stable) return out;
     out.solid_genus = solid.genus;
-    if (solid.genus <= 0) return out;
     Mesh mesh = Mesh::from_indexed(solid.surface);
     mesh.drop_faces();
     if (!simplify(mesh, start_vertices(target))) return out;

@@ -1,5 +1,5 @@
 // nmesh/learn/solid_start.h — topology closed and open: the solid a cloud walls round, and its
-// outer surface as the learning's start when it has handles.
+// outer surface as the learning's start.
 //
 // A mesh grown from a tetrahedron is a sphere, and the handle search (handles.h) turns it into a
 // surface of another genus only by local surgery, which a shape like a knotted tube defeats (a
@@ -8,7 +8,10 @@
 // walls an inside round: every cell of a voxel grid within an offset of the points is the
 // shell; the cells reached from the grid's border without crossing it are the outside; the rest
 // is the solid. Its outer surface (marching tetrahedra on the grid) has the genus of the object
-// when the offset closes the gaps between samples and not those between parts.
+// when the offset closes the gaps between samples and not those between parts. Its shape is the
+// object's too: a start with the horse's four legs already there, where the growth from a
+// tetrahedron has to find each thin part and is led astray by some seeds (a leg grown inside
+// the body, a mesh that is half inside out before the fold guard undoes it).
 //
 // Choices:
 //   - lengths are in units of d, the median distance from a point to its nearest other point
@@ -54,7 +57,7 @@ struct SolidSurface {
     float spacing = 0.0f;       // d, in transformed units
     std::uint32_t components = 0;
     int genus = -1;             // of the outer surface (summed over its components)
-    // When the genus is above 0: a grid shifted by a fraction of a cell gives the same
+    // The genus can be trusted: it is 0, or a grid shifted by a fraction of a cell gives the same
     // components and genus (at the same offset, or at the next where it leaks at that one).
     bool stable = false;
     IndexedMesh surface;        // the outer surface (faces outward), when stable
@@ -64,8 +67,8 @@ struct SolidSurface {
 SolidSurface solid_surface(PointSpan points, const PointTransform& transform);
 
 // The learning's start for topology closed and open: the solid's outer surface simplified to
-// start_vertices(target) vertices, when `points` wall a solid of genus above 0 round (one
-// component); no mesh otherwise (the learning starts from the tetrahedron, as the paper's).
+// start_vertices(target) vertices, when `points` wall a solid round (one component, a genus that
+// can be trusted); no mesh otherwise (the learning starts from the tetrahedron, as the paper's).
 struct SolidStart {
     int solid_genus = -1;       // of the solid, when the points wall one round (one component)
     std::optional<Mesh> mesh;   // the start, dense slots, faces outward

@@ -55,7 +55,8 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << "  \"parameters\": {\"target_vertices\": " << p.target_vertices << ", \"alpha_w\": " << p.alpha_w
       << ", \"alpha_n\": " << p.alpha_n << ", \"alpha\": " << p.alpha << ", \"cvs\": " << p.cvs
       << ", \"cec\": " << p.cec << ", \"edge_swap\": " << (p.edge_swap ? "true" : "false")
-      << ", \"fold_guard\": " << (p.fold_guard ? "true" : "false") << ", \"topology\": \"" << topology_name(p.topology)
+      << ", \"fold_guard\": " << (p.fold_guard ? "true" : "false")
+      << ", \"solid_start\": " << (p.solid_start ? "true" : "false") << ", \"topology\": \"" << topology_name(p.topology)
       << "\", \"settle\": " << p.settle << ", \"finish\": " << (p.finish ? "true" : "false")
       << ", \"finish_rounds\": " << p.finish_rounds << ", \"fit_rounds\": " << p.fit_rounds
       << ", \"index_points_per_vertex\": " << p.index_points_per_vertex << "},\n"

@@ -177,6 +177,7 @@ def reconstruct(
     cec: int = 20,
     edge_swap: bool = True,
     fold_guard: bool = True,
+    solid_start: bool = True,
     finish: bool = True,
     seed: int = 1,
     progress: Optional[ProgressCallback] = None,
@@ -206,6 +207,8 @@ def reconstruct(
     cvs: a vertex split every `cvs` iterations.  cec: inactive vertices removed every cec * n.
     edge_swap: Neural Meshes ES (False: basic Neural Meshes).
     fold_guard: step 3 may not fold the winner's triangles (False: eq. (2) as the paper has it).
+    solid_start: closed and open: start from the solid the cloud walls round, when it walls one
+        (False: grow from a tetrahedron, the handles from the handle search).
     finish: the finishing stage (flips, relaxation onto the cloud, repair of folds).
     seed: the random seed (an integer in [0, 2**64 - 1]).
     progress: called about every 65,536 iterations and once when the learning ends, as
@@ -248,6 +251,7 @@ def reconstruct(
         edge_swap=_flag("edge_swap", edge_swap),
         topology=topology,
         fold_guard=_flag("fold_guard", fold_guard),
+        solid_start=_flag("solid_start", solid_start),
         finish=_flag("finish", finish),
         seed=_count("seed", seed, _UINT64_MAX),
         settle=_real("settle", settle),

@@ -32,6 +32,7 @@ def reconstruct(
     index_points_per_vertex: int,
     topology: str,
     fold_guard: bool,
+    solid_start: bool,
     progress: Optional[Callable[[int, int, float], Optional[bool]]],
     metrics: bool,
 ) -> Tuple[_Float32Array, _Int32Array, str, bool]: ...

@@ -101,7 +101,8 @@ def test_seed_and_parameters_reach_the_library(bunny: np.ndarray, bunny_mesh: nm
                                seed=2**64 - 1, index_points_per_vertex=0, metrics=False).stats
     assert params["seed"] == 2**64 - 1
     assert params["parameters"] == {"target_vertices": 300, "alpha_w": 0.05, "alpha_n": 0.02, "alpha": 0.9,
-                                    "cvs": 80, "cec": 15, "edge_swap": True, "fold_guard": True, "topology": "closed",
+                                    "cvs": 80, "cec": 15, "edge_swap": True, "fold_guard": True, "solid_start": True,
+                                    "topology": "closed",
                                     "settle": 0, "finish": False,
                                     "finish_rounds": 10, "fit_rounds": 0, "index_points_per_vertex": 0}
     assert params["seconds_finish"] == 0
@@ -112,12 +113,23 @@ def test_topology_modes(sphere: np.ndarray) -> None:
         r = nmesh.reconstruct(sphere, 300, topology=mode, metrics=False)
         assert r.stats["parameters"]["topology"] == mode
         assert r.stats["genus"] == 0 and r.stats["boundary_loops"] == 0  # a sphere sample: no handle, no hole
-    # The default, closed, finds no handle on a sphere: the sphere mode's mesh.
+    # The default, closed, starts from the solid the sample walls round (150 vertices); without
+    # that start it grows from the tetrahedron and finds no handle: the sphere mode's mesh.
     a = nmesh.reconstruct(sphere, 300, topology="sphere", metrics=False)
-    b = nmesh.reconstruct(sphere, 300, metrics=False)
+    b = nmesh.reconstruct(sphere, 300, solid_start=False, metrics=False)
     assert np.array_equal(a.faces, b.faces) and np.array_equal(a.vertices, b.vertices)
+    c = nmesh.reconstruct(sphere, 300, metrics=False)
+    assert c.stats["start_vertices"] == 150 and a.stats["start_vertices"] == 4
+    assert c.vertices.shape == (300, 3) and not np.array_equal(a.vertices, c.vertices)
     with pytest.raises(ValueError, match="topology.*'torus'"):
         nmesh.reconstruct(sphere, 50, topology="torus")
+
+
+def test_solid_start_keyword(sphere: np.ndarray) -> None:
+    r = nmesh.reconstruct(sphere, 300, solid_start=False, metrics=False)
+    assert r.stats["parameters"]["solid_start"] is False and r.stats["start_vertices"] == 4
+    with pytest.raises(TypeError, match="solid_start"):
+        nmesh.reconstruct(sphere, 300, solid_start="no")
 
 
 def test_fold_guard_keyword(sphere: np.ndarray) -> None:
