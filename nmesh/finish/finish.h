@@ -77,6 +77,11 @@ struct FinishOptions {
     // (repair_folds_and_intersections). reconstruct() sets none: with a limit in seconds the
     // mesh depends on the machine's speed.
     double seconds_limit = 0.0;
+    // When neither repair leaves the mesh without crossing pairs, take a repair that removed
+    // every defect but moved the surface off the cloud (finish.cpp). reconstruct() asks for it
+    // only when no output retry is left: another path of the learning may give a valid mesh
+    // without that loss.
+    bool off_cloud_last_resort = true;
 };
 
 struct FinishReport {
@@ -91,7 +96,9 @@ struct FinishReport {
     bool repair_reverted = false;  // the repair did not succeed and was undone
     // When the repair of the regularised mesh fails and that mesh has more intersecting pairs than
     // the learnt one, the stage falls back on the learnt mesh, repaired if possible.
-    enum class Fallback { none, repaired_learnt_mesh, learnt_mesh };
+    // Which mesh the stage returns: the regularised one (repaired if need be), the learnt one
+    // repaired or as it was, or a repair that moved the surface off the cloud (the last resort).
+    enum class Fallback { none, repaired_learnt_mesh, learnt_mesh, off_cloud_repair };
     Fallback fallback = Fallback::none;
     double seconds = 0.0;
 };

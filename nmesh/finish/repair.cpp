@@ -254,14 +254,18 @@ RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fo
         }
         ok = tracker.clean();
     }
-    const bool near_cloud =
-        !abandoned && (!cloud || estimate->after(mesh, tracker.changed_faces()) <= estimate->value() + 0.5f * mean_len);
+    const float rise = cloud ? (estimate->after(mesh, tracker.changed_faces()) - estimate->value()) / mean_len : 0.0f;
+    const bool near_cloud = !abandoned && rise <= 0.5f;
     // A repair that leaves defects is kept when it leaves fewer intersecting pairs than it found
     // (and no more folded edges), so that the defects it could not remove do not undo those it
     // did; the mesh is put back otherwise.
     const bool better = counted && tracker.pairs().size() < result.intersecting_pairs_before &&
                         tracker.folds().size() <= result.folded_edges_before;
     if (abandoned || !near_cloud || !(ok || better)) {
+        if (ok && !abandoned && !near_cloud && rise <= kAbandonEdges) {
+            result.off_cloud = mesh;
+            result.off_cloud_rise = rise;
+        }
         mesh = original;
         result.reverted = true;
         return result;

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -34,6 +35,12 @@ struct RepairResult {
     std::size_t folded_edges = 0;
     std::uint32_t rounds = 0;
     bool reverted = false;  // the mesh was put back as it came
+    // When the repair removed every defect and was undone only for the surface it moved off the
+    // cloud (by more than half the mean edge length, at most kAbandonEdges): that repaired mesh,
+    // and the rise of the estimated Hausdorff distance in mean edge lengths. The stage takes it
+    // when it has nothing valid otherwise.
+    std::optional<Mesh> off_cloud;
+    float off_cloud_rise = 0.0f;
 };
 
 // Step 2 of the stage (see finish.cpp for the details). With `cloud`, the smoothed vertices are

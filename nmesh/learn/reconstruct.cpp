@@ -338,7 +338,8 @@ void settle(NeuralMesh& engine, const Parameters& params, Reporter& reporter) {
 // (FinishOptions::repair_max_rounds).
 bool finish_stage(const Mesh& learnt, std::shared_ptr<PointGrid>& cloud_index, PointSpan cloud,
                   const Normalization& norm, const Parameters& params, Reporter& reporter, Statistics& stats,
-                  Mesh& mesh, double progress_from = 0.0, double progress_share = 1.0, bool repair = true) {
+                  Mesh& mesh, double progress_from = 0.0, double progress_share = 1.0, bool repair = true,
+                  bool last_resort = true) {
     if (!cloud_index) {
         cloud_index = index_cloud(cloud, norm.transform, norm.bounds, params);
         record_index(*cloud_index, stats);
@@ -348,6 +349,7 @@ bool finish_stage(const Mesh& learnt, std::shared_ptr<PointGrid>& cloud_index, P
     options.rounds = int(params.finish_rounds);
     options.fit_rounds = int(params.fit_rounds);
     if (!repair) options.repair_max_rounds = 0;
+    options.off_cloud_last_resort = last_resort;
     finish_mesh(mesh, cloud_index->indexed_points(), options, cloud_index.get(),
                 [&](double fraction) { reporter.report_finishing(progress_from + progress_share * fraction); });
     return mesh.n_vertices() == learnt.n_vertices();
@@ -404,7 +406,8 @@ void open_output(Mesh& learnt, bool finish, bool last, std::shared_ptr<PointGrid
             done += piece.n_faces();
             // A view's sheet without the repair: its few crossings are cut at the end instead
             // (the repair's rounds on them take seconds and then fall back on the sheet as it was).
-            if (finish_stage(piece, cloud_index, cloud, norm, params, reporter, stats, finished, from, share, !view.partial))
+            if (finish_stage(piece, cloud_index, cloud, norm, params, reporter, stats, finished, from, share, !view.partial,
+                             last))
                 piece = std::move(finished);
             else
                 stats.finished = false;
@@ -500,13 +503,14 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
         std::shared_ptr<PointGrid> cloud_index = finish || open ? engine->take_cloud_index() : nullptr;
         engine.reset();
 
+        // No output retry left: the finishing stage may take its last resort.
+        const bool last = attempt >= output_retries || !checkpoints.on || !checkpoints.last;
         if (open) {
-            const bool last = attempt >= output_retries || !checkpoints.on || !checkpoints.last;
             open_output(learnt, finish, last, cloud_index, cloud, norm, params, reporter, result);
         } else {
             Mesh finished;
-            result.stats.finished =
-                finish && finish_stage(learnt, cloud_index, cloud, norm, params, reporter, result.stats, finished);
+            result.stats.finished = finish && finish_stage(learnt, cloud_index, cloud, norm, params, reporter,
+                                                           result.stats, finished, 0.0, 1.0, true, last);
             if (result.stats.finished) learnt = Mesh();  // freed before the output mesh is built
             result.mesh = (result.stats.finished ? finished : learnt).to_indexed();
         }
