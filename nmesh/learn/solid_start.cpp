@@ -357,6 +357,7 @@ SolidStart solid_start(PointSpan points, const PointTransform& transform, std::u
     const SolidSurface solid = solid_surface(points, transform);
     if (!solid.walled || solid.components != 1 || !solid.stable) return out;
     out.solid_genus = solid.genus;
+    if (solid.genus == 0 && solid.offset > kMaxShapeOffset) return out;
     Mesh mesh = Mesh::from_indexed(solid.surface);
     mesh.drop_faces();
     if (!simplify(mesh, start_vertices(target))) return out;
