@@ -88,6 +88,31 @@ TEST_CASE("a torus sample walls a solid of genus 1 round, a sphere sample one of
     CHECK(genus_of(sphere.surface) == 0);
 }
 
+TEST_CASE("a genus-0 solid is a start only when it hugs the samples (kMaxShapeOffset)") {
+    // A sphere sample with a scanner's hole a few point spacings wide: the small offsets leak
+    // through it, a larger one walls the solid round, as the bunny's base holes do at 8 d. That
+    // solid has genus 0 but is no start; the whole sphere, walled round at 3-4 d, is one.
+    const PointCloud sphere = test::sphere_cloud(20000);
+    PointCloud holed;
+    for (const Vec3& p : sphere.points)
+        if (p.z < 0.996f) holed.points.push_back(p);  // walled round at 8 d (4 d: below 0.999)
+    const SolidSurface s = solid_of(holed);
+    REQUIRE(s.walled);
+    CHECK(s.genus == 0);
+    CHECK(s.offset > kMaxShapeOffset);
+    CHECK(s.surface.triangles.empty());
+    const SolidSurface whole = solid_of(sphere);
+    CHECK(whole.offset <= kMaxShapeOffset);
+    CHECK_FALSE(whole.surface.triangles.empty());
+    for (const PointCloud* c : {static_cast<const PointCloud*>(&holed), &sphere}) {
+        const BoundingBox box = bounding_box(PointSpan(c->points));
+        const SolidStart start =
+            solid_start(PointSpan(c->points), PointTransform{box.center(), float(1.0 / box.diagonal())}, 2000);
+        CHECK(start.solid_genus == 0);
+        CHECK(start.mesh.has_value() == (c == &sphere));
+    }
+}
+
 TEST_CASE("the torus's genus is read at every sampling density, the shifted grids agreeing") {
     // At 3,000 and 5,000 points both shifted grids leak at the offset that walls the first grid
     // round, and agree at the next.

@@ -342,6 +342,7 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform) {
         if (out.stable) break;
     }
     if (!out.stable) return out;
+    if (out.genus == 0 && out.offset > kMaxShapeOffset) return out;  // no start: no surface to build
     // The surface from cells twice as large when they give the same topology: a quarter of the
     // triangles to simplify.
     const Grid coarse = grid_over(box, 2.0f * g.h, largest + 4.0f * g.h);
@@ -357,7 +358,7 @@ SolidStart solid_start(PointSpan points, const PointTransform& transform, std::u
     const SolidSurface solid = solid_surface(points, transform);
     if (!solid.walled || solid.components != 1 || !solid.stable) return out;
     out.solid_genus = solid.genus;
-    if (solid.genus == 0 && solid.offset > kMaxShapeOffset) return out;
+    if (solid.surface.triangles.empty()) return out;  // a genus-0 solid walled round too far out
     Mesh mesh = Mesh::from_indexed(solid.surface);
     mesh.drop_faces();
     if (!simplify(mesh, start_vertices(target))) return out;

@@ -66,7 +66,9 @@ struct SolidSurface {
     // The genus can be trusted: it is 0, or a grid shifted by a fraction of a cell gives the same
     // components and genus (at the same offset, or at the next where it leaks at that one).
     bool stable = false;
-    IndexedMesh surface;        // the outer surface (faces outward), when stable
+    // The outer surface (faces outward), when stable and, for genus 0, walled round at an offset
+    // of at most kMaxShapeOffset (solid_start's condition for a start).
+    IndexedMesh surface;
 };
 
 // The solid `points` (through `transform`) wall round, and its outer surface. O(P + voxels).
