@@ -57,10 +57,11 @@ void assert_manifold(const Mesh& mesh, const char* after);
 
 // What nmesh built with NMESH_CHECK_INVARIANTS runs after every local operation (split,
 // collapse, flip, unflip): check_around(centres), and check_manifold whenever the operations
-// since the last whole check have earned it. Each operation earns 4,096 half-edges of checking,
-// and the whole check costs the mesh's half-edges: a mesh of up to 4,096 half-edges (about 680
-// vertices) is checked whole after every operation, a larger one every few, so that a run to n
-// vertices costs O(n) checking rather than O(n^2). Aborts with the message on a violation.
+// since the last whole check have earned it. Each operation earns 256 slots of checking, and
+// the whole check costs the mesh's slots (half-edges, vertices and faces, free ones included,
+// about 9 per vertex): a mesh of up to about 28 vertices is checked whole after every operation,
+// a larger one every few, so that a run to n vertices costs O(n) checking rather than O(n^2).
+// Aborts with the message on a violation.
 void assert_manifold_after(const Mesh& mesh, const char* after, std::initializer_list<Vertex> centres);
 
 }  // namespace nmesh
