@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <utility>
 
@@ -13,6 +14,7 @@
 #include "mesh_fixtures.h"
 #include "sanitized.h"
 #include "nmesh/finish/finish.h"
+#include "nmesh/geometry/closest_point.h"
 #include "nmesh/mesh/mesh.h"
 #include "nmesh/mesh/mesh_check.h"
 #include "nmesh/metrics.h"
@@ -192,6 +194,98 @@ TEST_CASE("tangential relaxation evens out the triangles and keeps them on the s
     CHECK(area_spread(m) < 0.6 * spread_before);
     CHECK(smallest_angle(m) > angle_before);
     CHECK(off_sphere(m) < 0.01f);  // edges are about 0.15 long
+}
+
+namespace {
+
+// An icosphere whose vertices slid along the sphere by up to a tenth of its radius (seeded).
+IndexedMesh jittered_icosphere(int levels, std::uint64_t seed) {
+    IndexedMesh im = icosphere(levels);
+    Random rng(seed);
+    for (Vec3& p : im.positions) {
+        const Vec3 d{float(rng.uniform() - 0.5), float(rng.uniform() - 0.5), float(rng.uniform() - 0.5)};
+        p = normalized(p + (d - p * dot(d, p)) * 0.1f);
+    }
+    return im;
+}
+
+std::vector<Vec3> positions_by_id(const Mesh& m) {
+    std::vector<Vec3> at(m.vertex_capacity());
+    for (std::uint32_t v = 0; v < m.vertex_capacity(); ++v) at[v] = m.position(Vertex(v));
+    return at;
+}
+
+// Whether one of v's triangles faces against their summed normal.
+bool ring_folds(const Mesh& m, Vertex v) {
+    const Vec3& p = m.position(v);
+    Vec3 normal;
+    m.for_each_corner(v, [&](Halfedge h) { normal += cross(m.position(m.to(h)) - p, m.position(m.to(m.next(h))) - p); });
+    bool folded = false;
+    m.for_each_corner(v, [&](Halfedge h) {
+        folded = folded || dot(cross(m.position(m.to(h)) - p, m.position(m.to(m.next(h))) - p), normal) <= 0.0f;
+    });
+    return folded;
+}
+
+}  // namespace
+
+TEST_CASE("the relaxation with anchors keeps a tip where the learning left it, and still smooths the rest") {
+    // A spike: vertex 0 pulled out of the sphere and leaning to one side, so that its triangles'
+    // centroid lies off its axis and the relaxation slides it down the side.
+    IndexedMesh im = jittered_icosphere(2, 5);
+    const Vec3 p = im.positions[0];
+    Vec3 side = cross(p, Vec3{0.0f, 0.0f, 1.0f});
+    if (norm(side) < 0.1f) side = cross(p, Vec3{1.0f, 0.0f, 0.0f});
+    im.positions[0] = p * 1.4f + normalized(side) * 0.15f;
+    const Mesh m = Mesh::from_indexed(im);
+    require_valid(m);
+    REQUIRE_FALSE(ring_folds(m, Vertex(0)));
+    const Anchors anchors{positions_by_id(m), std::vector<std::uint8_t>(m.vertex_capacity(), 1)};
+
+    Mesh free = m, anchored = m;
+    relax_tangentially(free);
+    relax_tangentially(anchored, nullptr, &anchors);
+    // Without anchors the tip slides down: the relaxation the anchors guard against.
+    CHECK(distance(free.position(Vertex(0)), m.position(Vertex(0))) > 0.03f);  // edges about 0.3
+    CHECK(anchored.position(Vertex(0)) == m.position(Vertex(0)));
+    // Elsewhere the vertices move as without anchors (a slide along the sphere keeps the anchor
+    // on the triangles).
+    std::uint32_t moved = 0, same = 0;
+    for (std::uint32_t v = 1; v < m.vertex_capacity(); ++v) {
+        moved += distance(free.position(Vertex(v)), m.position(Vertex(v))) > 1e-4f;
+        same += free.position(Vertex(v)) == anchored.position(Vertex(v));
+    }
+    INFO(moved << " vertices moved without anchors, " << same << " of " << m.vertex_capacity() - 1
+               << " to the same place with them");
+    CHECK(moved > (m.vertex_capacity() - 1) * 9 / 10);
+    CHECK(same > (m.vertex_capacity() - 1) * 8 / 10);
+    require_valid(anchored);
+}
+
+TEST_CASE("the relaxation with anchors still moves a vertex whose triangles fold") {
+    // Vertex 0 pushed past one of its neighbours: a triangle of its ring turns over.
+    IndexedMesh im = jittered_icosphere(2, 7);
+    Mesh probe = Mesh::from_indexed(im);
+    const Vertex u = probe.to(probe.halfedge(Vertex(0)));
+    const Vec3 p = im.positions[0], q = im.positions[u.idx];
+    im.positions[0] = normalized(p + (q - p) * 1.5f);
+    const Mesh m = Mesh::from_indexed(im);
+    REQUIRE(ring_folds(m, Vertex(0)));
+    const Anchors anchors{positions_by_id(m), std::vector<std::uint8_t>(m.vertex_capacity(), 1)};
+    Mesh free = m, anchored = m;
+    relax_tangentially(free);
+    relax_tangentially(anchored, nullptr, &anchors);
+    // The move is no slide along the surface (the anchor ends off the triangles), yet it is made.
+    float off = std::numeric_limits<float>::infinity();
+    anchored.for_each_corner(Vertex(0), [&](Halfedge h) {
+        const Vec3 y = closest_point_on_triangle_float(anchors.at[0], anchored.position(Vertex(0)),
+                                                       m.position(anchored.to(h)), m.position(anchored.to(anchored.next(h))));
+        off = std::min(off, distance(anchors.at[0], y));
+    });
+    INFO("the anchor ends " << off << " off the moved vertex's triangles");
+    CHECK(off > 0.1f * 0.3f);
+    CHECK(anchored.position(Vertex(0)) == free.position(Vertex(0)));
+    CHECK(distance(anchored.position(Vertex(0)), m.position(Vertex(0))) > 0.05f);
 }
 
 TEST_CASE("the pull towards the cloud ignores points facing the other way or out of reach") {

@@ -12,7 +12,8 @@
 //      of its triangles, the vertex then pulled along its normal towards the plane through its
 //      nearest cloud point (CloudSurface::pull: at most a quarter of an edge per round, only
 //      towards a point facing the same way; a vertex that would end more than an edge from the
-//      cloud, farther than it was, stays where it is);
+//      cloud, farther than it was, stays where it is; so does a vertex whose move would leave the
+//      place the learning left it on the scan uncovered: a tip, a sharp ridge, relax_tangentially);
 //   2. repair of folds and self-intersections: local smoothing, collapses of very short and splits
 //      of very long edges around each defect until none is left, then the smoothed vertices are
 //      pulled back towards the cloud wherever that creates no new defect. The repair is all or

@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "nmesh/finish/mesh_queries.h"
+#include "nmesh/geometry/closest_point.h"
 #include "nmesh/util/math_constants.h"
 
 namespace nmesh {
@@ -59,11 +61,44 @@ std::uint64_t flip_to_delaunay(Mesh& mesh, float max_dihedral_deg) {
     return flips;
 }
 
-void relax_tangentially(Mesh& mesh, const CloudSurface* cloud) {
+namespace {
+
+// Whether moving v to q keeps `anchor` within kAnchorReach of v's mean edge length of v's
+// triangles (with v at q, its neighbours where they are), or v's triangles fold.
+bool keeps_anchor(const Mesh& mesh, Vertex v, const Vec3& q, const Vec3& anchor) {
+    const Vec3& p = mesh.position(v);
+    Vec3 normal;
+    float ring = 0.0f, nearest2 = std::numeric_limits<float>::infinity();
+    std::uint32_t valence = 0;
+    mesh.for_each_corner(v, [&](Halfedge h) {
+        const Vec3 &q1 = mesh.position(mesh.to(h)), &q2 = mesh.position(mesh.to(mesh.next(h)));
+        normal += cross(q1 - p, q2 - p);
+        ring += distance(p, q1);
+        ++valence;
+        nearest2 = std::min(nearest2, squared_distance(anchor, closest_point_on_triangle_float(anchor, q, q1, q2)));
+    });
+    const float reach = kAnchorReach * ring / float(std::max<std::uint32_t>(valence, 1));
+    if (nearest2 <= reach * reach) return true;
+    bool folded = false;
+    mesh.for_each_corner(v, [&](Halfedge h) {
+        const Vec3 &q1 = mesh.position(mesh.to(h)), &q2 = mesh.position(mesh.to(mesh.next(h)));
+        folded = folded || dot(cross(q1 - p, q2 - p), normal) <= 0.0f;
+    });
+    return folded;
+}
+
+}  // namespace
+
+void relax_tangentially(Mesh& mesh, const CloudSurface* cloud, const Anchors* anchors) {
     const std::vector<Vertex> verts = alive_vertices(mesh);
     std::vector<Vec3> next(verts.size());
     const float mean_edge = mean_edge_length(mesh);
-    for (std::size_t i = 0; i < verts.size(); ++i) next[i] = relaxed_position(mesh, verts[i], cloud, mean_edge);
+    for (std::size_t i = 0; i < verts.size(); ++i) {
+        next[i] = relaxed_position(mesh, verts[i], cloud, mean_edge);
+        const Vertex v = verts[i];
+        if (anchors && anchors->held[v.idx] && !keeps_anchor(mesh, v, next[i], anchors->at[v.idx]))
+            next[i] = mesh.position(verts[i]);
+    }
     for (std::size_t i = 0; i < verts.size(); ++i) mesh.set_position(verts[i], next[i]);
 }
 
