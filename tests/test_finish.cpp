@@ -166,12 +166,6 @@ IndexedMesh jittered_icosphere(int levels, std::uint64_t seed) {
     return im;
 }
 
-std::vector<Vec3> positions_by_id(const Mesh& m) {
-    std::vector<Vec3> at(m.vertex_capacity());
-    for (std::uint32_t v = 0; v < m.vertex_capacity(); ++v) at[v] = m.position(Vertex(v));
-    return at;
-}
-
 // Whether one of v's triangles faces against their summed normal.
 bool ring_folds(const Mesh& m, Vertex v) {
     const Vec3& p = m.position(v);
@@ -234,7 +228,7 @@ TEST_CASE("the relaxation with anchors keeps a tip where the learning left it, a
     const Mesh m = Mesh::from_indexed(im);
     require_valid(m);
     REQUIRE_FALSE(ring_folds(m, Vertex(0)));
-    const Anchors anchors{positions_by_id(m), std::vector<std::uint8_t>(m.vertex_capacity(), 1)};
+    const Anchors anchors{m.positions(), std::vector<std::uint8_t>(m.vertex_capacity(), 1)};
 
     Mesh free = m, anchored = m;
     relax_tangentially(free);
@@ -265,7 +259,7 @@ TEST_CASE("the relaxation with anchors still moves a vertex whose triangles fold
     im.positions[0] = normalized(p + (q - p) * 1.5f);
     const Mesh m = Mesh::from_indexed(im);
     REQUIRE(ring_folds(m, Vertex(0)));
-    const Anchors anchors{positions_by_id(m), std::vector<std::uint8_t>(m.vertex_capacity(), 1)};
+    const Anchors anchors{m.positions(), std::vector<std::uint8_t>(m.vertex_capacity(), 1)};
     Mesh free = m, anchored = m;
     relax_tangentially(free);
     relax_tangentially(anchored, nullptr, &anchors);

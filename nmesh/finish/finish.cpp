@@ -85,22 +85,30 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
     // left off the scan (a spike, the rim of a fold) has no anchor to keep.
     Anchors anchors;
     if (pull && options.rounds > 0) {
-        anchors.at.resize(mesh.vertex_capacity());
+        anchors.at = mesh.positions();
         anchors.held.assign(mesh.vertex_capacity(), 0);
         const float support = kAnchorSupport * mean_edge_length(mesh);
-        for (const Vertex v : alive_vertices(mesh)) {
-            anchors.at[v.idx] = mesh.position(v);
+        for (const Vertex v : alive_vertices(mesh))
             anchors.held[v.idx] = pull->index().nearest_squared_distance(mesh.position(v)) <= support * support;
-        }
         // Nor has a vertex within two rings of a folded edge: the relaxation is what untangles
         // the fold, and the repair starts from what it leaves.
-        std::vector<Vertex> near_fold;
-        for (const Edge e : find_folded_edges(mesh, options.fold_dihedral_deg))
-            for (const Vertex v : {mesh.from(Mesh::halfedge(e, 0)), mesh.to(Mesh::halfedge(e, 0))}) near_fold.push_back(v);
-        for (int ring = 0; ring < 2; ++ring)
-            for (std::size_t i = 0, n = near_fold.size(); i < n; ++i)
-                mesh.for_each_outgoing_cw(near_fold[i], [&](Halfedge h) { near_fold.push_back(mesh.to(h)); });
-        for (const Vertex v : near_fold) anchors.held[v.idx] = 0;
+        std::vector<std::uint8_t> near_fold(mesh.vertex_capacity(), 0);
+        std::vector<Vertex> frontier, last;
+        const auto reach = [&](Vertex v) {
+            if (near_fold[v.idx]) return;
+            near_fold[v.idx] = 1;
+            anchors.held[v.idx] = 0;
+            frontier.push_back(v);
+        };
+        for (const Edge e : find_folded_edges(mesh, options.fold_dihedral_deg)) {
+            reach(mesh.from(Mesh::halfedge(e, 0)));
+            reach(mesh.to(Mesh::halfedge(e, 0)));
+        }
+        for (int ring = 0; ring < 2; ++ring) {
+            last.swap(frontier);
+            frontier.clear();
+            for (const Vertex v : last) mesh.for_each_outgoing_cw(v, [&](Halfedge h) { reach(mesh.to(h)); });
+        }
     }
     for (int r = 0; r < options.rounds && !regularisation_over(); ++r) {
         report.flips += flip_to_delaunay(mesh, options.flip_max_dihedral_deg);

@@ -94,10 +94,10 @@ void relax_tangentially(Mesh& mesh, const CloudSurface* cloud, const Anchors* an
     std::vector<Vec3> next(verts.size());
     const float mean_edge = mean_edge_length(mesh);
     for (std::size_t i = 0; i < verts.size(); ++i) {
-        next[i] = relaxed_position(mesh, verts[i], cloud, mean_edge);
         const Vertex v = verts[i];
+        next[i] = relaxed_position(mesh, v, cloud, mean_edge);
         if (anchors && anchors->held[v.idx] && !keeps_anchor(mesh, v, next[i], anchors->at[v.idx]))
-            next[i] = mesh.position(verts[i]);
+            next[i] = mesh.position(v);
     }
     for (std::size_t i = 0; i < verts.size(); ++i) mesh.set_position(verts[i], next[i]);
 }
