@@ -22,10 +22,13 @@ namespace nmesh::finish_detail {
 // check are kept as they were.
 class DefectTracker {
 public:
-    DefectTracker(Mesh& mesh, float cos_limit) : mesh_(mesh), cos_limit_(cos_limit) {
+    // `known_clean`: the caller knows the mesh has no defect (the repair's result), and the
+    // search over the whole mesh, most of the construction's cost, is skipped.
+    DefectTracker(Mesh& mesh, float cos_limit, bool known_clean = false) : mesh_(mesh), cos_limit_(cos_limit) {
         const std::vector<Face> faces = alive_faces(mesh);
         cell_ = grid_cell(mesh, faces);
         grid_ = std::make_unique<FaceGrid>(mesh, faces, cell_);
+        if (known_clean) return;
         grid_->for_each_pair([&](Face f, Face g) {
             if (mesh_faces_intersect(mesh_, f, g)) pairs_.emplace_back(f, g);
         });

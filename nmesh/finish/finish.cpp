@@ -11,6 +11,7 @@
 #include <optional>
 #include <utility>
 
+#include "nmesh/finish/cover.h"
 #include "nmesh/finish/mesh_queries.h"
 
 namespace nmesh {
@@ -85,11 +86,7 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
     // left off the scan (a spike, the rim of a fold) has no anchor to keep.
     Anchors anchors;
     if (pull && options.rounds > 0) {
-        anchors.at = mesh.positions();
-        anchors.held.assign(mesh.vertex_capacity(), 0);
-        const float support = kAnchorSupport * mean_edge_length(mesh);
-        for (const Vertex v : alive_vertices(mesh))
-            anchors.held[v.idx] = pull->index().nearest_squared_distance(mesh.position(v)) <= support * support;
+        anchors = anchors_on_scan(mesh, *pull, mean_edge_length(mesh));
         // Nor has a vertex within two rings of a folded edge: the relaxation is what untangles
         // the fold, and the repair starts from what it leaves.
         std::vector<std::uint8_t> near_fold(mesh.vertex_capacity(), 0);
@@ -97,7 +94,7 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
         const auto reach = [&](Vertex v) {
             if (near_fold[v.idx]) return;
             near_fold[v.idx] = 1;
-            anchors.held[v.idx] = 0;
+            anchors.release(v);
             frontier.push_back(v);
         };
         for (const Edge e : find_folded_edges(mesh, options.fold_dihedral_deg)) {
@@ -173,6 +170,11 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
         }
         report.intersecting_pairs_after = r.intersecting_pairs;
         report.folded_edges_after = r.folded_edges;
+        // Step 3, on a mesh the repair left without defects (none at its fold limit, so none at
+        // the cover's, which is larger).
+        if (pull && report.intersecting_pairs_after == 0 && report.folded_edges_after == 0 &&
+            options.fold_dihedral_deg <= kCoverFoldDeg)
+            report.cover_moves = cover_uncovered_points(mesh, *pull, options.cover_iterations).moves;
     }
     if (progress) progress(1.0);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

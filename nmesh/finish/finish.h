@@ -83,6 +83,11 @@ struct FinishOptions {
     // only when no output retry is left: another path of the learning may give a valid mesh
     // without that loss.
     bool off_cloud_last_resort = true;
+    // Cover (step 3): iterations of cover_uncovered_points (nmesh/finish/cover.h), which draws
+    // vertices out to the scan points the surface leaves more than half an edge away (a tip the
+    // learning left short or the repair took back); only on a mesh the repair left without
+    // defects, and only with `project`. 0 skips it.
+    int cover_iterations = 3;
 };
 
 struct FinishReport {
@@ -95,6 +100,7 @@ struct FinishReport {
     std::size_t folded_edges_after = 0;
     std::uint32_t repair_rounds = 0;
     bool repair_reverted = false;  // the repair did not succeed and was undone
+    std::uint32_t cover_moves = 0;  // vertex moves of step 3 kept
     // When the repair of the regularised mesh fails and that mesh has more intersecting pairs than
     // the learnt one, the stage falls back on the learnt mesh, repaired if possible.
     // Which mesh the stage returns: the regularised one (repaired if need be), the learnt one
