@@ -6,7 +6,6 @@
 #include <memory>
 #include <vector>
 
-#include "nmesh/finish/repair.h"
 #include "nmesh/finish/defect_tracker.h"
 #include "nmesh/finish/mesh_queries.h"
 #include "nmesh/util/math_constants.h"

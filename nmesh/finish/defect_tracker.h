@@ -9,6 +9,7 @@
 
 #include "nmesh/finish/face_grid.h"
 #include "nmesh/finish/mesh_queries.h"
+#include "nmesh/finish/repair.h"  // split_edge, for restore_vertex_count
 #include "nmesh/mesh/mesh.h"
 
 namespace nmesh::finish_detail {

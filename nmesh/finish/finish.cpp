@@ -86,7 +86,11 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
     // left off the scan (a spike, the rim of a fold) has no anchor to keep.
     Anchors anchors;
     if (pull && options.rounds > 0) {
-        anchors = anchors_on_scan(mesh, *pull, mean_edge_length(mesh));
+        anchors.at = mesh.positions();
+        anchors.held.assign(mesh.vertex_capacity(), 0);
+        const float support = kAnchorSupport * mean_edge_length(mesh);
+        for (const Vertex v : alive_vertices(mesh))
+            anchors.held[v.idx] = pull->index().nearest_squared_distance(mesh.position(v)) <= support * support;
         // Nor has a vertex within two rings of a folded edge: the relaxation is what untangles
         // the fold, and the repair starts from what it leaves.
         std::vector<std::uint8_t> near_fold(mesh.vertex_capacity(), 0);
@@ -94,7 +98,7 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
         const auto reach = [&](Vertex v) {
             if (near_fold[v.idx]) return;
             near_fold[v.idx] = 1;
-            anchors.release(v);
+            anchors.held[v.idx] = 0;
             frontier.push_back(v);
         };
         for (const Edge e : find_folded_edges(mesh, options.fold_dihedral_deg)) {

@@ -61,17 +61,6 @@ std::uint64_t flip_to_delaunay(Mesh& mesh, float max_dihedral_deg) {
     return flips;
 }
 
-Anchors anchors_on_scan(const Mesh& mesh, const CloudSurface& cloud, float mean_edge) {
-    Anchors anchors;
-    anchors.at = mesh.positions();
-    anchors.held.assign(mesh.vertex_capacity(), 0);
-    const float support = kAnchorSupport * mean_edge;
-    for (std::uint32_t i = 0; i < mesh.vertex_capacity(); ++i)
-        if (!mesh.is_removed(Vertex(i)))
-            anchors.held[i] = cloud.index().nearest_squared_distance(mesh.position(Vertex(i))) <= support * support;
-    return anchors;
-}
-
 namespace {
 
 // Whether moving v to q keeps `anchor` within kAnchorReach of v's mean edge length of v's
@@ -107,7 +96,7 @@ void relax_tangentially(Mesh& mesh, const CloudSurface* cloud, const Anchors* an
     for (std::size_t i = 0; i < verts.size(); ++i) {
         const Vertex v = verts[i];
         next[i] = relaxed_position(mesh, v, cloud, mean_edge);
-        if (anchors && anchors->holds(v) && !keeps_anchor(mesh, v, next[i], anchors->at[v.idx]))
+        if (anchors && anchors->held[v.idx] && !keeps_anchor(mesh, v, next[i], anchors->at[v.idx]))
             next[i] = mesh.position(v);
     }
     for (std::size_t i = 0; i < verts.size(); ++i) mesh.set_position(verts[i], next[i]);

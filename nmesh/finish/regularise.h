@@ -40,16 +40,7 @@ inline constexpr float kAnchorSupport = 0.25f;
 struct Anchors {
     std::vector<Vec3> at;             // by vertex id
     std::vector<std::uint8_t> held;   // by vertex id: whether the vertex has an anchor
-
-    bool holds(Vertex v) const { return v.idx < held.size() && held[v.idx]; }
-    // A vertex made or moved by a split or a collapse has no learnt position to keep (its id may
-    // be a removed vertex's, reused).
-    void release(Vertex v) {
-        if (v.idx < held.size()) held[v.idx] = 0;
-    }
 };
-// Anchors at the vertices of `mesh` within kAnchorSupport of `mean_edge` of a cloud point.
-Anchors anchors_on_scan(const Mesh& mesh, const CloudSurface& cloud, float mean_edge);
 void relax_tangentially(Mesh& mesh, const CloudSurface* cloud = nullptr, const Anchors* anchors = nullptr);
 
 // One damped Lloyd step of the centroids towards the cloud (see FinishOptions::fit_rounds).
