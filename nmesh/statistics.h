@@ -54,6 +54,9 @@ struct Statistics {
     double seconds = 0.0;              // learning time, wall clock (normalisation included)
     double seconds_finish = 0.0;       // the finishing stage (Parameters::finish), wall clock
     bool finished = false;             // the finishing stage ran and its mesh was returned
+    // The finishing stage's repair was not tried: too many of the triangles crossed or folded
+    // (nmesh/finish/repair.h, kRepairMaxDefectShare), as where a closed mesh wraps an open sheet.
+    bool repair_declined = false;
     // The output checked (reconstruct() does it for every mesh it returns): the triangles were
     // reversed to face outward (negative signed volume), crossing triangle pairs by the exact
     // test, faces pointing inward. A valid surface has no crossing pair and no inward face.

@@ -513,11 +513,13 @@ TEST_CASE("a repair that does not remove every defect keeps only an improvement"
     // two rounds cannot undo that. Whatever the repair keeps has fewer intersecting pairs than it
     // found, as find_self_intersections counts them, and is still a closed manifold of the same
     // size; or the mesh is given back unchanged.
+    // (With every triangle defective the repair would decline it: here it is made to try.)
     IndexedMesh im = icosphere(2);
     for (Vec3& p : im.positions) p.z = 0.0f;
     Mesh m = Mesh::from_indexed(im);
     const Mesh before = m;
-    const RepairResult r = repair_folds_and_intersections(m, 2);
+    const RepairResult r = repair_folds_and_intersections(m, 2, 120.0f, nullptr, 0.0, {}, 1.0f);
+    CHECK_FALSE(r.declined);
     CHECK(r.intersecting_pairs_before > 0);
     CHECK(r.intersecting_pairs > 0);
     if (r.reverted) {
@@ -535,12 +537,54 @@ TEST_CASE("a repair that does not remove every defect keeps only an improvement"
     pushed.positions[0] = pushed.positions[0] * -1.5f;
     Mesh q = Mesh::from_indexed(pushed);
     const Mesh q_before = q;
-    const RepairResult rq = repair_folds_and_intersections(q, 1);
+    const RepairResult rq = repair_folds_and_intersections(q, 1, 120.0f, nullptr, 0.0, {}, 1.0f);
     CHECK(rq.intersecting_pairs_before > 0);
     if (rq.reverted)
         CHECK(q.same_arrays(q_before));
     else
         CHECK(rq.intersecting_pairs < rq.intersecting_pairs_before);
+}
+
+TEST_CASE("the repair declines a mesh with more than its share of defective triangles, and leaves it as it was") {
+    // Spheres with 1 to 8 vertices pushed across their rings: the share of the triangles in a
+    // crossing pair or on a folded edge, counted by the whole-mesh searches, decides; a declined
+    // mesh comes back as it was. Both outcomes occur.
+    Random rng(17);
+    int declined = 0, tried = 0;
+    for (int trial = 0; trial < 40; ++trial) {
+        IndexedMesh im = icosphere(2);
+        const int pushes = 1 + int(rng.below(8));
+        for (int i = 0; i < pushes; ++i) {
+            Vec3& p = im.positions[rng.below(std::uint32_t(im.positions.size()))];
+            const Vec3 dir{float(rng.uniform() - 0.5), float(rng.uniform() - 0.5), float(rng.uniform() - 0.5)};
+            p = normalized(p + normalized(dir - p * dot(dir, p)) * float(0.3 + 0.4 * rng.uniform()));
+        }
+        Mesh m = Mesh::from_indexed(im);
+        std::vector<char> bad(m.face_capacity(), 0);
+        for (const auto& [f, g] : find_self_intersections(m)) bad[f.idx] = bad[g.idx] = 1;
+        for (const Edge e : find_folded_edges(m, 120.0f)) {
+            bad[m.face(Mesh::halfedge(e, 0)).idx] = 1;
+            bad[m.face(Mesh::halfedge(e, 1)).idx] = 1;
+        }
+        const auto defective = std::count(bad.begin(), bad.end(), char(1));
+        if (defective == 0) continue;
+        const float share = float(defective) / float(m.n_faces());
+        INFO("trial " << trial << ", share " << share);
+        const Mesh before = m;
+        const RepairResult r = repair_folds_and_intersections(m, 1);
+        CHECK(r.declined == (share > kRepairMaxDefectShare));
+        if (r.declined) {
+            ++declined;
+            CHECK(r.rounds == 0);
+            CHECK(r.intersecting_pairs == r.intersecting_pairs_before);
+            CHECK(m.same_arrays(before));
+        } else {
+            ++tried;
+            CHECK(r.rounds == 1);
+        }
+    }
+    CHECK(declined > 0);
+    CHECK(tried > 0);
 }
 
 // ---- the stage ------------------------------------------------------------------------------------
@@ -781,14 +825,30 @@ TEST_CASE("a repair that moves the surface off the cloud is given up after its f
     p.finish = false;
     Mesh m = Mesh::from_indexed(reconstruct(cap, p).mesh);
     const IndexedMesh before = m.to_indexed();
-    const FinishOptions options;
+    Mesh declined = m;
+    FinishOptions options;
+    options.repair_max_defect_share = 1.0f;  // the repair tried, however defective the mesh
     const FinishReport r = finish_mesh(m, cap, options);
+    CHECK_FALSE(r.repair_declined);
     CHECK(r.intersecting_pairs_before > 100);
     CHECK(r.repair_reverted);
     CHECK(r.repair_rounds == 16);
     CHECK(r.repair_rounds < 2 * std::uint32_t(options.repair_max_rounds));
     CHECK(r.intersecting_pairs_after == r.intersecting_pairs_before);  // the regularised mesh, unrepaired
     CHECK(m.n_vertices() == before.positions.size());
+    // With the default share the repair is not tried at all, and the same mesh comes back.
+    const FinishReport d = finish_mesh(declined, cap, FinishOptions{});
+    CHECK(d.repair_declined);
+    CHECK(d.repair_rounds == 0);
+    CHECK(d.intersecting_pairs_before == r.intersecting_pairs_before);
+    CHECK(d.intersecting_pairs_after == d.intersecting_pairs_before);
+    CHECK(declined.same_arrays(m));
+    // reconstruct() says so (the CLI's warning and --stats read it).
+    Parameters q = p;
+    q.finish = true;
+    const Result whole = reconstruct(cap, q);
+    CHECK(whole.stats.repair_declined);
+    CHECK(whole.stats.crossing_pairs > 0);
 }
 
 TEST_CASE("the last resort: a repair undone only for moving off the cloud is taken when nothing else is valid") {

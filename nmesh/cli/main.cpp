@@ -272,12 +272,15 @@ int run_reconstruct(int argc, char** argv) {
                      "cloud has no data\n",
                      output.c_str(), r.mesh.positions.size(),
                      (unsigned long long)(p.target_vertices - r.mesh.positions.size()));
+    // One line; when the repair declined the mesh, it says why and what to try.
     if (r.stats.crossing_pairs > 0 || r.stats.inward_faces > 0)
-        std::fprintf(stderr,
-                     "nmesh: warning: %s is not a valid surface: %llu pairs of crossing triangles, %llu faces "
-                     "pointing inward\n",
+        std::fprintf(stderr, "nmesh: warning: %s is not a valid surface: %llu pairs of crossing triangles, %llu faces "
+                     "pointing inward%s\n",
                      output.c_str(), (unsigned long long)r.stats.crossing_pairs,
-                     (unsigned long long)r.stats.inward_faces);
+                     (unsigned long long)r.stats.inward_faces,
+                     r.stats.repair_declined ? " (too many for the finishing stage to repair: a scan seen from one "
+                                               "side? try --topology open)"
+                                             : "");
     if (args.has("--stats")) {
         const QualityReport q = evaluate_with_progress(cloud.points, r.mesh, quiet);
         write_file_atomically(stats_path, [&](std::ostream& o) { write_run_json(o, input, p, r, q); });

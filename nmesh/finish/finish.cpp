@@ -131,11 +131,13 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
             last_rounds = rounds;
         };
         RepairResult r = repair_folds_and_intersections(mesh, options.repair_max_rounds, options.fold_dihedral_deg,
-                                                        pull, 0.5 * seconds_left(), on_round);
+                                                        pull, 0.5 * seconds_left(), on_round,
+                                                        options.repair_max_defect_share);
         report.intersecting_pairs_before = r.intersecting_pairs_before;
         report.folded_edges_before = r.folded_edges_before;
         report.repair_rounds = r.rounds;
         report.repair_reverted = r.reverted;
+        report.repair_declined = r.declined;
         // When the repair leaves intersecting pairs, it is tried on the learnt mesh as well, and
         // the mesh with fewer of them is kept (the regularised one on a tie): the stage never
         // returns more of them than the learnt mesh had. Folded edges alone do not call for it:
@@ -144,11 +146,14 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
         // as long, docs/performance.md).
         std::optional<Mesh> off_cloud = std::move(r.off_cloud);
         float off_cloud_rise = r.off_cloud_rise;
-        if (r.intersecting_pairs > 0 && (options.rounds > 0 || options.fit_rounds > 0)) {
+        // A mesh too defective to repair (kRepairMaxDefectShare) is not tried again as learnt: on
+        // the single view the learnt mesh has more defects than the regularised one, not fewer.
+        if (r.intersecting_pairs > 0 && !r.declined && (options.rounds > 0 || options.fit_rounds > 0)) {
             Mesh alternative = learnt;
             last_rounds = 0;
             RepairResult ra = repair_folds_and_intersections(alternative, options.repair_max_rounds,
-                                                             options.fold_dihedral_deg, pull, seconds_left(), on_round);
+                                                             options.fold_dihedral_deg, pull, seconds_left(), on_round,
+                                                             options.repair_max_defect_share);
             report.repair_rounds += ra.rounds;
             if (ra.off_cloud && (!off_cloud || ra.off_cloud_rise < off_cloud_rise)) {
                 off_cloud = std::move(ra.off_cloud);

@@ -64,6 +64,9 @@ struct FinishOptions {
     // defects remain, so the limit changes only the repairs that need more. How many a repair
     // needs depends on the face numbering (a round treats the defective triangles in face order).
     int repair_max_rounds = 80;
+    // The repair declines a mesh with more than this share of its triangles defective
+    // (kRepairMaxDefectShare, nmesh/finish/repair.h); 1 tries every mesh.
+    float repair_max_defect_share = kRepairMaxDefectShare;
     // An edge is folded when the normals of its two triangles differ by more than this.
     float fold_dihedral_deg = 120.0f;
     // Centroid fit, off by default: each round moves every vertex so that the centroids of its
@@ -100,6 +103,7 @@ struct FinishReport {
     std::size_t folded_edges_after = 0;
     std::uint32_t repair_rounds = 0;
     bool repair_reverted = false;  // the repair did not succeed and was undone
+    bool repair_declined = false;  // not tried: too many defects for a repair (kRepairMaxDefectShare)
     std::uint32_t cover_moves = 0;  // vertex moves of step 3 kept
     // When the repair of the regularised mesh fails and that mesh has more intersecting pairs than
     // the learnt one, the stage falls back on the learnt mesh, repaired if possible.

@@ -70,7 +70,7 @@ Vertex split_edge(Mesh& mesh, Halfedge h) {
 // fidelity where the tangle was (it followed the data, badly), but only locally.
 RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fold_dihedral_deg,
                                             const CloudSurface* cloud, double seconds_limit,
-                                            const std::function<void(int rounds)>& on_round) {
+                                            const std::function<void(int rounds)>& on_round, float max_defect_share) {
     const auto start = std::chrono::steady_clock::now();
     const auto out_of_time = [&] {
         return seconds_limit > 0.0 &&
@@ -83,6 +83,10 @@ RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fo
     result.intersecting_pairs = result.intersecting_pairs_before;
     result.folded_edges = result.folded_edges_before;
     if (tracker.clean()) return result;
+    if (float(tracker.defective_faces().size()) > max_defect_share * float(mesh.n_faces())) {
+        result.declined = true;
+        return result;
+    }
 
     const Mesh original = mesh;
     std::unique_ptr<HausdorffEstimate> estimate;

@@ -350,8 +350,10 @@ bool finish_stage(const Mesh& learnt, std::shared_ptr<PointGrid>& cloud_index, P
     options.fit_rounds = int(params.fit_rounds);
     if (!repair) options.repair_max_rounds = 0;
     options.off_cloud_last_resort = last_resort;
-    finish_mesh(mesh, cloud_index->indexed_points(), options, cloud_index.get(),
-                [&](double fraction) { reporter.report_finishing(progress_from + progress_share * fraction); });
+    const FinishReport report =
+        finish_mesh(mesh, cloud_index->indexed_points(), options, cloud_index.get(),
+                    [&](double fraction) { reporter.report_finishing(progress_from + progress_share * fraction); });
+    stats.repair_declined = stats.repair_declined || report.repair_declined;
     return mesh.n_vertices() == learnt.n_vertices();
 }
 

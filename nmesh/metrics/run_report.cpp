@@ -91,6 +91,7 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << "  \"indexed_points\": " << s.indexed_points << ",\n"
       << "  \"seconds\": " << s.seconds << ",\n"
       << "  \"seconds_finish\": " << s.seconds_finish << ",\n"
+      << "  \"repair_declined\": " << (s.repair_declined ? "true" : "false") << ",\n"
       << "  \"reoriented\": " << (s.reoriented ? "true" : "false") << ",\n"
       << "  \"genus\": " << s.genus << ",\n"
       << "  \"boundary_loops\": " << s.boundary_loops << ",\n"
