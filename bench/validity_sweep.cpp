@@ -23,8 +23,10 @@
 
 #include "nmesh/cli/arguments.h"
 #include "nmesh/error.h"
+#include "nmesh/geometry/triangle_bvh.h"
 #include "nmesh/io.h"
 #include "nmesh/metrics.h"
+#include "nmesh/metrics/orientation.h"
 #include "nmesh/reconstruct.h"
 #include "summary.h"
 
@@ -39,6 +41,7 @@ struct Run {
     std::size_t crossing_pairs = 0;
     double volume = 0.0;
     double inward_share = 0.0;
+    std::size_t inward_patch = 0;  // faces in the largest edge-connected patch of inward faces
     double hausdorff_rel = 0.0;
     double seconds_learning = 0.0, seconds_finish = 0.0;
     bool closed = false;
@@ -86,6 +89,11 @@ Run run_one(const std::string& name, const nmesh::PointCloud& cloud, std::uint32
         r.crossing_pairs = q.self_intersections;
         r.volume = q.signed_volume;
         r.inward_share = q.faces > 0 ? double(q.inward_faces) / double(q.faces) : 0.0;
+        if (q.inward_faces > 0) {
+            const nmesh::TriangleBvh bvh(res.mesh);
+            r.inward_patch = nmesh::metrics_detail::largest_patch(res.mesh,
+                                                                  nmesh::metrics_detail::inward_face_flags(res.mesh, bvh));
+        }
         r.hausdorff_rel = q.hausdorff_rel;
         r.seconds_learning = res.stats.seconds;
         r.seconds_finish = res.stats.seconds_finish;
@@ -164,12 +172,13 @@ int main(int argc, char** argv) {
 
     {
         std::ofstream out(csv);
-        out << "cloud,vertices,seed,finish,crossing_pairs,signed_volume,inward_share,hausdorff_rel,closed,genus,"
+        out << "cloud,vertices,seed,finish,crossing_pairs,signed_volume,inward_share,inward_patch,hausdorff_rel,closed,"
+               "genus,"
                "boundary_loops,components,seconds_learning,seconds_finish,error\n";
         out.precision(6);
         for (const Run& r : runs)
             out << r.cloud << ',' << r.vertices << ',' << r.seed << ',' << (r.finish ? 1 : 0) << ',' << r.crossing_pairs
-                << ',' << r.volume << ',' << r.inward_share << ',' << r.hausdorff_rel << ',' << (r.closed ? 1 : 0)
+                << ',' << r.volume << ',' << r.inward_share << ',' << r.inward_patch << ',' << r.hausdorff_rel << ',' << (r.closed ? 1 : 0)
                 << ',' << r.genus << ',' << r.boundary_loops << ',' << r.components << ',' << r.seconds_learning << ','
                 << r.seconds_finish << ",\"" << r.error << "\"\n";
     }
@@ -185,18 +194,21 @@ int main(int argc, char** argv) {
     out << "# Validity sweep (topology " << nmesh::topology_name(g_topology)
         << ")\n\nEach row: one cloud and size, with the finishing stage (`finished`) or without it "
            "(`learnt`), over the seeds. Crossing pairs by the exact test; a face points inward when the point just "
-           "off it along its normal has a nonzero winding number; Hausdorff distance in % of the cloud's "
+           "off it along its normal has a nonzero winding number, and the largest inward patch is the most faces "
+           "in one edge-connected patch of them (a fold turns a few triangles over, a twist a whole region); Hausdorff distance in % of the cloud's "
            "bounding-box diagonal; the largest ratio of the finishing stage's time to the learning's.\n\n";
     out << "| cloud | vertices | stage | runs | with crossings | most pairs | with inward faces | most inward | "
+           "largest inward patch | "
            "negative volume | genus (runs) | with boundary | most loops | most components | Hausdorff median | max | "
            "max / median | finish / learning (max) | errors |\n"
-        << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     bool failed = false;
     char buf[512];
     for (const auto& key : keys) {
         const auto& g = groups[key];
         std::size_t crossing = 0, most = 0, inward = 0, negative = 0, errors = 0;
         std::size_t bounded = 0, most_loops = 0, most_components = 0;
+        std::size_t largest_patch = 0;
         double most_inward = 0.0, finish_ratio = 0.0;
         std::vector<double> h;
         std::map<int, int> genera;  // genus -> runs
@@ -209,6 +221,7 @@ int main(int argc, char** argv) {
             most = std::max(most, r->crossing_pairs);
             inward += r->inward_share > 0.0;
             most_inward = std::max(most_inward, r->inward_share);
+            largest_patch = std::max(largest_patch, r->inward_patch);
             negative += r->volume < 0.0;
             ++genera[r->genus];
             bounded += r->boundary_loops > 0;
@@ -225,10 +238,10 @@ int main(int argc, char** argv) {
             genus_text +=
                 (genus_text.empty() ? "" : ", ") + std::to_string(it->first) + " (" + std::to_string(it->second) + ")";
         std::snprintf(buf, sizeof buf,
-                      "| %s | %u | %s | %zu | %zu | %zu | %zu | %.2f%% | %zu | %s | %zu | %zu | %zu "
+                      "| %s | %u | %s | %zu | %zu | %zu | %zu | %.2f%% | %zu | %zu | %s | %zu | %zu | %zu "
                       "| %.2f%% | %.2f%% | %.2f | %.2f | %zu |\n",
                       std::get<0>(key).c_str(), std::get<1>(key), std::get<2>(key) ? "finished" : "learnt", g.size(),
-                      crossing, most, inward, 100.0 * most_inward, negative, genus_text.c_str(), bounded, most_loops,
+                      crossing, most, inward, 100.0 * most_inward, largest_patch, negative, genus_text.c_str(), bounded, most_loops,
                       most_components, s.median, s.max, s.median > 0.0 ? s.max / s.median : 0.0, finish_ratio, errors);
         out << buf;
     }

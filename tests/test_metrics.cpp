@@ -1169,6 +1169,68 @@ TEST_CASE("orientation: the signed volume and the faces that point inward") {
     CHECK(std::abs(h.signed_volume) < 0.5 * out.signed_volume);
 }
 
+TEST_CASE("orientation: the largest edge-connected patch of flagged faces") {
+    // A cap of the sphere (z > 0.7) and three single faces far from it and from each other: the
+    // cap is the largest patch; two faces that share only a vertex are two patches; the inward
+    // test finds the reversed cap as one patch.
+    IndexedMesh sphere = icosphere(3);
+    std::vector<std::uint8_t> flags(sphere.triangles.size(), 0);
+    std::size_t cap = 0;
+    std::vector<std::uint32_t> singles;
+    for (std::uint32_t t = 0; t < sphere.triangles.size(); ++t) {
+        const auto& tri = sphere.triangles[t];
+        const Vec3 c = (sphere.positions[tri[0]] + sphere.positions[tri[1]] + sphere.positions[tri[2]]) * (1.0f / 3.0f);
+        if (c.z > 0.7f) {
+            flags[t] = 1;
+            ++cap;
+        } else if (singles.size() < 3 && c.z < -0.5f &&
+                   std::all_of(singles.begin(), singles.end(), [&](std::uint32_t s) {
+                       const auto& u = sphere.triangles[s];
+                       for (std::uint32_t a : tri)
+                           for (std::uint32_t b : u)
+                               if (a == b) return false;
+                       return true;
+                   })) {
+            flags[t] = 1;
+            singles.push_back(t);
+        }
+    }
+    REQUIRE(singles.size() == 3);
+    REQUIRE(cap > 10);
+    CHECK(nmesh::metrics_detail::largest_patch(sphere, flags) == cap);
+    std::vector<std::uint8_t> only_singles(flags.size(), 0);
+    for (const std::uint32_t s : singles) only_singles[s] = 1;
+    CHECK(nmesh::metrics_detail::largest_patch(sphere, only_singles) == 1);
+    CHECK(nmesh::metrics_detail::largest_patch(sphere, std::vector<std::uint8_t>(flags.size(), 0)) == 0);
+    CHECK(nmesh::metrics_detail::largest_patch(sphere, std::vector<std::uint8_t>(flags.size(), 1)) == flags.size());
+    // Two faces sharing only a vertex: two patches of one.
+    IndexedMesh fan = icosphere(1);
+    std::vector<std::uint8_t> two(fan.triangles.size(), 0);
+    for (std::uint32_t t = 1; t < fan.triangles.size(); ++t) {
+        const auto& a = fan.triangles[0];
+        const auto& b = fan.triangles[t];
+        int shared = 0;
+        for (std::uint32_t x : a)
+            for (std::uint32_t y : b) shared += x == y;
+        if (shared == 1) {
+            two[0] = two[t] = 1;
+            break;
+        }
+    }
+    REQUIRE(std::count(two.begin(), two.end(), std::uint8_t(1)) == 2);
+    CHECK(nmesh::metrics_detail::largest_patch(fan, two) == 1);
+    // The cap reversed: the inward test flags it, one patch.
+    for (std::uint32_t t = 0; t < sphere.triangles.size(); ++t)
+        if (flags[t] && std::find(singles.begin(), singles.end(), t) == singles.end())
+            std::swap(sphere.triangles[t][1], sphere.triangles[t][2]);
+    const nmesh::TriangleBvh bvh(sphere);
+    const auto inward = nmesh::metrics_detail::inward_face_flags(sphere, bvh);
+    const std::size_t flagged = std::size_t(std::count(inward.begin(), inward.end(), std::uint8_t(1)));
+    CHECK(flagged <= cap);
+    CHECK(flagged >= cap * 9 / 10);  // a face at the cap's edge may count either way
+    CHECK(nmesh::metrics_detail::largest_patch(sphere, inward) >= cap * 9 / 10);
+}
+
 TEST_CASE("orient_outward reverses an inside-out closed mesh and leaves an outward one alone") {
     IndexedMesh m = icosphere(2);
     const IndexedMesh outward = m;

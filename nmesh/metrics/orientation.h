@@ -24,6 +24,11 @@ std::size_t inward_faces(const IndexedMesh& mesh, const TriangleBvh& bvh);
 // The same test face by face: 1 for a face that points inward, 0 otherwise.
 std::vector<std::uint8_t> inward_face_flags(const IndexedMesh& mesh, const TriangleBvh& bvh);
 
+// The most faces in one edge-connected patch of the `flagged` ones (one flag per triangle): for
+// the inward faces, a fold turns a few triangles over, a twist (part of the surface inside out)
+// a whole region. Triangles sharing an edge, whatever its other triangles. O(F log F).
+std::size_t largest_patch(const IndexedMesh& mesh, const std::vector<std::uint8_t>& flagged);
+
 // Reverses every triangle when the signed volume is negative, so that a closed mesh faces
 // outward; returns whether it did.
 bool orient_outward(IndexedMesh& mesh);
