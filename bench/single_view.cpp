@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "nmesh/bounding_box.h"
-#include "nmesh/finish/mesh_pieces.h"
+#include "nmesh/mesh/mesh_pieces.h"
 #include "nmesh/finish/open_surface.h"
 #include "nmesh/geometry/triangle_bvh.h"
 #include "nmesh/geometry/triangle_intersection.h"

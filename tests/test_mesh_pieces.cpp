@@ -1,4 +1,4 @@
-// A triangle list in pieces (nmesh/finish/mesh_pieces.h): split and joined again gives the same
+// A triangle list in pieces (nmesh/mesh/mesh_pieces.h): split and joined again gives the same
 // triangles; pieces are edge-connected, a bow-tie vertex is copied into each of its pieces.
 #include <doctest/doctest.h>
 
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "mesh_fixtures.h"
-#include "nmesh/finish/mesh_pieces.h"
+#include "nmesh/mesh/mesh_pieces.h"
 #include "nmesh/metrics.h"
 
 using namespace nmesh;

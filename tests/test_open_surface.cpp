@@ -15,7 +15,7 @@
 #include "engine_checks.h"
 #include "mesh_fixtures.h"
 #include "nmesh/finish/finish.h"
-#include "nmesh/finish/mesh_pieces.h"
+#include "nmesh/mesh/mesh_pieces.h"
 #include "nmesh/finish/open_surface.h"
 #include "nmesh/geometry/triangle_intersection.h"
 #include "nmesh/util/random.h"

@@ -1,9 +1,9 @@
 #include "nmesh/finish/open_surface.h"
 
 #include "nmesh/finish/cloud_normals.h"
-#include "nmesh/finish/mesh_pieces.h"
 #include "nmesh/geometry/triangle_intersection.h"
 #include "nmesh/mesh/face_regions.h"
+#include "nmesh/mesh/mesh_pieces.h"
 
 #include <algorithm>
 #include <array>

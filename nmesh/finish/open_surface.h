@@ -9,7 +9,7 @@
 // bunny with its five base holes (the rocker arm 0.73%, the bunny 0.29%, the knot 0.14%, the
 // horse 0.12%, the eight 0.09%). reconstruct() then runs:
 //  1. on a partial view only, the view's sheet in place of the learnt mesh (view_sheet,
-//     nmesh/finish/view_sheet.h), in one or more pieces (nmesh/finish/mesh_pieces.h), each
+//     nmesh/finish/view_sheet.h), in one or more pieces (nmesh/mesh/mesh_pieces.h), each
 //     finished as a mesh of its own;
 //  2. Unsupported faces (cut_unsupported), on the finished mesh (each piece of it). A face whose
 //     centroid is farther from every cloud point than kOpenEdges typical edge lengths (the median over the

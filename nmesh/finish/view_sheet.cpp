@@ -7,9 +7,9 @@
 #include <utility>
 
 #include "nmesh/finish/cloud_normals.h"
-#include "nmesh/finish/mesh_pieces.h"
 #include "nmesh/geometry/delaunay_2d.h"
 #include "nmesh/geometry/triangle_intersection.h"
+#include "nmesh/mesh/mesh_pieces.h"
 
 namespace nmesh {
 

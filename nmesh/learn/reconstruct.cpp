@@ -10,7 +10,7 @@
 #include "nmesh/spatial/cloud_sample.h"
 #include "nmesh/error.h"
 #include "nmesh/finish/finish.h"
-#include "nmesh/finish/mesh_pieces.h"
+#include "nmesh/mesh/mesh_pieces.h"
 #include "nmesh/finish/open_surface.h"
 #include "nmesh/finish/view_sheet.h"
 #include "nmesh/metrics.h"

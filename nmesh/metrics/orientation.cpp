@@ -1,9 +1,9 @@
 #include "nmesh/metrics/orientation.h"
 
+#include "nmesh/mesh/mesh_pieces.h"
+
 #include <algorithm>
 #include <cmath>
-#include <numeric>
-#include <tuple>
 #include <utility>
 
 namespace nmesh::metrics_detail {
@@ -92,27 +92,12 @@ std::size_t inward_faces(const IndexedMesh& mesh, const TriangleBvh& bvh) {
 }
 
 std::size_t largest_patch(const IndexedMesh& mesh, const std::vector<std::uint8_t>& flagged) {
-    std::vector<std::uint32_t> parent(flagged.size());
-    std::iota(parent.begin(), parent.end(), 0u);
-    const auto find = [&](std::uint32_t x) {
-        while (parent[x] != x) x = parent[x] = parent[parent[x]];
-        return x;
-    };
-    std::vector<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>> edges;  // (low, high, face)
-    for (std::uint32_t t = 0; t < flagged.size(); ++t)
-        if (flagged[t])
-            for (std::size_t i = 0; i < 3; ++i) {
-                const std::uint32_t a = mesh.triangles[t][i], b = mesh.triangles[t][(i + 1) % 3];
-                edges.emplace_back(std::min(a, b), std::max(a, b), t);
-            }
-    std::sort(edges.begin(), edges.end());
-    for (std::size_t i = 1; i < edges.size(); ++i)
-        if (std::get<0>(edges[i]) == std::get<0>(edges[i - 1]) && std::get<1>(edges[i]) == std::get<1>(edges[i - 1]))
-            parent[find(std::get<2>(edges[i]))] = find(std::get<2>(edges[i - 1]));
-    std::vector<std::size_t> size(flagged.size(), 0);
+    IndexedMesh patches;
+    patches.positions = mesh.positions;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+        if (flagged[t]) patches.triangles.push_back(mesh.triangles[t]);
     std::size_t largest = 0;
-    for (std::uint32_t t = 0; t < flagged.size(); ++t)
-        if (flagged[t]) largest = std::max(largest, ++size[find(t)]);
+    for (const MeshPiece& piece : split_pieces(patches)) largest = std::max(largest, piece.mesh.triangles.size());
     return largest;
 }
 

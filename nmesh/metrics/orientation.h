@@ -26,7 +26,7 @@ std::vector<std::uint8_t> inward_face_flags(const IndexedMesh& mesh, const Trian
 
 // The most faces in one edge-connected patch of the `flagged` ones (one flag per triangle): for
 // the inward faces, a fold turns a few triangles over, a twist (part of the surface inside out)
-// a whole region. Triangles sharing an edge, whatever its other triangles. O(F log F).
+// a whole region. Edge-connected as split_pieces (nmesh/mesh/mesh_pieces.h) has it. O(F log F).
 std::size_t largest_patch(const IndexedMesh& mesh, const std::vector<std::uint8_t>& flagged);
 
 // Reverses every triangle when the signed volume is negative, so that a closed mesh faces

@@ -1,4 +1,4 @@
-// nmesh/finish/mesh_pieces.h — a triangle list of several pieces, one piece at a time.
+// nmesh/mesh/mesh_pieces.h — a triangle list of several pieces, one piece at a time.
 //
 // The half-edge mesh (nmesh/mesh/mesh.h) holds one connected surface. Once the open mode cuts a
 // mesh (nmesh/finish/open_surface.h), the result may fall into pieces: the parts of a single view

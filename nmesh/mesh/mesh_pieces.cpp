@@ -1,4 +1,4 @@
-#include "nmesh/finish/mesh_pieces.h"
+#include "nmesh/mesh/mesh_pieces.h"
 
 #include <algorithm>
 #include <array>
