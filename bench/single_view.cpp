@@ -150,7 +150,11 @@ int main(int argc, char** argv) {
               << r.closed_seconds << '\n';
     }
     std::size_t crossing_runs = 0;
-    for (const Row& r : rows) crossing_runs += r.crossings > 0;
+    std::size_t within = 0;  // the goal: at most 2% of the diagonal both ways (the reference's pieces of 20+)
+    for (const Row& r : rows) {
+        crossing_runs += r.crossings > 0;
+        within += r.to_ref_max <= 2.0 && r.from_large_max <= 2.0;
+    }
     std::vector<double> ratio;
     for (const Row& r : rows) ratio.push_back(r.seconds / r.closed_seconds);
     char buf[2048];
@@ -170,10 +174,11 @@ int main(int argc, char** argv) {
                   "| seconds, the view (open) | %.2f | %.2f | %.2f |\n"
                   "| seconds, the closed bunny, same size | %.2f | %.2f | %.2f |\n"
                   "| time ratio, view / closed bunny | %.2f | %.2f | %.2f |\n\n"
-                  "%zu of %zu runs with crossing triangles.\n",
+                  "%zu of %zu runs with crossing triangles; %zu of %zu within 2%% of the diagonal both ways (mesh to\n"
+                  "reference, reference's pieces of 20+ triangles to mesh).\n",
                   a.median, a.min, a.max, tm.median, tm.min, tm.max, t9.median, t9.min, t9.max, fm.median, fm.min,
                   fm.max, f9.median, f9.min, f9.max, lm.median, lm.min, lm.max, l9.median, l9.min, l9.max, s.median, s.min, s.max, c.median, c.min, c.max, q.median, q.min,
-                  q.max, crossing_runs, rows.size());
+                  q.max, crossing_runs, rows.size(), within, rows.size());
     std::printf("%s", buf);
     if (!md.empty()) {
         std::ofstream o(md);

@@ -17,6 +17,8 @@
 #include "nmesh/finish/finish.h"
 #include "nmesh/mesh/mesh_pieces.h"
 #include "nmesh/finish/open_surface.h"
+#include "nmesh/finish/view_sheet.h"
+#include "nmesh/geometry/delaunay_2d.h"
 #include "nmesh/geometry/triangle_intersection.h"
 #include "nmesh/util/random.h"
 #include "nmesh/mesh/mesh.h"
@@ -510,4 +512,59 @@ TEST_CASE("topology open on a view where a far part shows under a near one acros
     // Seen on clouds 1-10, seeds 1-2: near 0.20-0.29, far 3.62-3.73 at 2,500 vertices; near
     // 0.18-0.26, far 3.41-3.58 at 1,000. Without the layers: near 0-0.05 (at 2,500).
     check_two_sheets(r.mesh, 0.36, 0.4, 4.0, 0.75);
+}
+
+namespace {
+
+// view_sheet on a flat view: a densely sampled square [0, 1]^2 (points and learnt vertices 0.01
+// apart) beside a sparsely sampled one [1, 2] x [0, 1] (points 0.04 apart, the vertices 0.1
+// apart: about nine typical edges, as on a wall seen at a grazing angle, where the learning puts
+// few vertices), with or without the sparse square's points. The sheet's area over the sparse
+// square.
+double sparse_side_area(bool sparse_points) {
+    std::vector<Vec3> points, vertices;
+    for (int i = 0; i <= 100; ++i)
+        for (int j = 0; j <= 100; ++j) {
+            points.push_back({0.01f * float(i), 0.01f * float(j), 0.0f});
+            vertices.push_back(points.back());
+        }
+    if (sparse_points)
+        for (int i = 1; i <= 25; ++i)
+            for (int j = 0; j <= 25; ++j) points.push_back({1.0f + 0.04f * float(i), 0.04f * float(j), 0.0f});
+    for (int i = 1; i <= 10; ++i)
+        for (int j = 0; j <= 10; ++j) vertices.push_back({1.0f + 0.1f * float(i), 0.1f * float(j), 0.0f});
+    // The learnt mesh: the vertices' Delaunay triangulation (view_sheet uses its vertices, and its
+    // faces for the typical edge).
+    IndexedMesh learnt;
+    learnt.positions = vertices;
+    std::vector<Point2d> plane;
+    for (const Vec3& v : vertices) plane.push_back({double(v.x), double(v.y)});
+    learnt.triangles = delaunay_2d(plane);
+    Mesh m = Mesh::from_indexed(learnt, true);
+    m.build_faces();
+    const PointGrid grid(points);
+    const CloudView view = view_cloud(grid, float(std::sqrt(2.0 / double(points.size()))));  // as reconstruct()
+    REQUIRE(view.partial);
+    OpenReport report;
+    const IndexedMesh sheet = view_sheet(m, grid, view, report);
+    double sparse = 0.0;
+    for (const auto& t : sheet.triangles) {
+        const Vec3 a = sheet.positions[t[0]], b = sheet.positions[t[1]], c = sheet.positions[t[2]];
+        if (a.x + b.x + c.x > 3.0f) sparse += 0.5 * double(norm(cross(b - a, c - a)));
+    }
+    return sparse;
+}
+
+}  // namespace
+
+TEST_CASE("view_sheet keeps a sparsely sampled part of a view, and nothing where there are no points") {
+    // Its triangles are longer than kSheetMaxEdges typical edges, shorter than kSheetMaxSpacings
+    // local spacings: with the points there, the sheet covers most of that square (area 1).
+    const double with_points = sparse_side_area(true);
+    MESSAGE("sparse square covered: " << with_points);
+    CHECK(with_points > 0.8);
+    // The same triangles without the points: no data there, nothing kept.
+    const double without = sparse_side_area(false);
+    MESSAGE("without its points: " << without);
+    CHECK(without < 0.05);
 }

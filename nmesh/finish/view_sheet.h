@@ -14,8 +14,8 @@
 //     nmesh/geometry/delaunay_2d.h). A range image sees each point of its surface from one side,
 //     so where its rays are about parallel to that direction the surface projects one to one and
 //     the triangles, counter-clockwise seen from the scanner, face it and cannot fold or cross;
-//  3. the triangles over no data go: those with an edge longer than kSheetMaxEdges typical edges,
-//     or the centroid or an edge's midpoint farther from every point than kOpenEdges typical edges
+//  3. the triangles over no data go: those with an edge longer than kSheetMaxEdges typical edges
+//     where the scan is not sparse (below), or the centroid or an edge's midpoint farther from every point than kOpenEdges typical edges
 //     and kOpenSpacings local spacings (the gaps where one part hid another from the scanner, the
 //     hull across the sheet's concave outline). What is left is cut as cut_faces cuts (a manifold
 //     with boundary, no piece under kOpenMinFaces). A learnt vertex that far from the points (on
@@ -39,9 +39,18 @@
 
 namespace nmesh {
 
-// A triangle with an edge longer than this many typical edges spans a gap without asking the
-// cloud (the hull's triangles across the outline's bays; asking is slow that far from the points).
+// A triangle with an edge longer than kSheetMaxEdges typical edges spans a gap (the hull's
+// triangles across the outline's bays), unless the scan is sparse there: such an edge stays when
+// it is shorter than kSheetMaxSpacings local spacings (at the point nearest the centroid). A wall
+// seen at a grazing angle is sampled a few typical edges apart, and the learning puts few vertices
+// on it: without this, no triangle there was short enough and the sheet lost it (bunny_scan090 at
+// 30,000 vertices: the scan's triangulation up to 4.9% of the diagonal from the sheet). Choice,
+// measured over seeds 1-12 (docs/algorithm.md): 6 spacings; 8 kept more of that wall but let
+// triangles stray from the scan's surface. An edge longer than kSheetSparseEdges typical edges
+// spans a gap without asking the cloud (asking is slow that far from the points).
 inline constexpr float kSheetMaxEdges = 8.0f;
+inline constexpr float kSheetMaxSpacings = 6.0f;
+inline constexpr float kSheetSparseEdges = 32.0f;
 inline constexpr int kSheetPasses = 3;
 // A vertex waits for a later pass when another vertex within kPeelRadiusEdges typical edges of it
 // across the view lies more than kPeelDepthEdges typical edges nearer the scanner, with no data
