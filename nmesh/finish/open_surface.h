@@ -30,8 +30,9 @@
 //     triangles, has such gaps surrounded by rim points, up to 2.5 limits deep, where the bunny's
 //     base holes are from 2.9 deep at 30,000 vertices), and stays: a closed cloud keeps a closed
 //     mesh. A face with a point near stays: no hole opens where there are points. From each
-//     region that opens, outwards, a face whose edge midpoint has no data by the same test goes
-//     too (the long triangles the learning leaves round a hole, an edge across it). The faces go
+//     region that opens, outwards, a face whose edge midpoint or corner has no data by the same
+//     test goes too (the long triangles the learning leaves round a hole, an edge across it or a
+//     corner over it). The faces go
 //     all at once (cut_faces), and the result may have several components: the sheets a single
 //     view sees apart.
 //  3. Crossing faces (cut_crossings), last: the faces of every pair of crossing triangles the
