@@ -21,7 +21,13 @@ void NeighbourGrid::nearest(std::uint32_t i, std::size_t k, int max_rings,
     const Vec3 p = points_[i];
     const std::int64_t ci = cell(p.x), cj = cell(p.y), ck = cell(p.z);
     float certain = 0.0f;
-    for (int rings = 1; rings <= max_rings; ++rings) {
+    // With cells of about two spacings, a block of r rings is certain within a disc holding about
+    // pi (2 r)^2 points of a surface: start at the first r where that reaches k (2 rings for 24
+    // neighbours). Fewer rings would be searched only to be searched again; the answer is the same
+    // (the k nearest, all within the certain radius, or what max_rings holds).
+    int first = 1;
+    while (first < max_rings && 12.566f * float(first * first) < float(k)) ++first;
+    for (int rings = first; rings <= max_rings; ++rings) {
         out.clear();
         for (std::int64_t x = ci - rings; x <= ci + rings; ++x)
             for (std::int64_t y = cj - rings; y <= cj + rings; ++y)
@@ -38,7 +44,10 @@ void NeighbourGrid::nearest(std::uint32_t i, std::size_t k, int max_rings,
         if (inside >= k) break;
     }
     const std::size_t n = std::min(k, out.size());
-    std::partial_sort(out.begin(), out.begin() + std::ptrdiff_t(n), out.end());
+    // The n smallest, then sorted: linear selection rather than partial_sort's heap over every
+    // candidate (a block holds several times k). Pairs compare fully, so the order is the same.
+    if (n < out.size()) std::nth_element(out.begin(), out.begin() + std::ptrdiff_t(n), out.end());
+    std::sort(out.begin(), out.begin() + std::ptrdiff_t(n));
     std::size_t kept = 0;
     while (kept < n && out[kept].first <= certain * certain) ++kept;
     out.resize(kept);
