@@ -59,14 +59,14 @@ std::vector<Vec3> sphere_surface(std::size_t n, std::mt19937& rng) {
 
 TEST_CASE("NeighbourGrid: the k nearest as a brute-force scan finds them, on a surface and in a volume") {
     std::mt19937 rng(3);
-    const std::vector<Vec3> surface = sphere_surface(1500, rng);
-    // About 0.09 between points on the unit sphere: cells of two spacings, and of other sizes.
-    for (const float cell : {0.18f, 0.06f, 0.5f})
+    const std::vector<Vec3> surface = sphere_surface(800, rng);
+    // About 0.12 between points on the unit sphere: cells of two spacings, and of other sizes.
+    for (const float cell : {0.25f, 0.08f, 0.6f})
         for (const std::size_t k : {std::size_t(1), std::size_t(8), std::size_t(24), std::size_t(60)})
             for (const int rings : {1, 3}) CHECK(mismatches(surface, cell, k, rings) == 0);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     std::vector<Vec3> volume;
-    for (int i = 0; i < 1200; ++i) volume.push_back({u(rng), u(rng), u(rng)});
+    for (int i = 0; i < 700; ++i) volume.push_back({u(rng), u(rng), u(rng)});
     for (const std::size_t k : {std::size_t(8), std::size_t(24)}) CHECK(mismatches(volume, 0.2f, k, 3) == 0);
 }
 
@@ -76,7 +76,7 @@ TEST_CASE("NeighbourGrid: clusters, stray points and duplicates get what lies wi
     std::uniform_real_distribution<float> u(-2.0f, 2.0f);
     std::vector<Vec3> points;
     for (const Vec3 c : {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{0, 1.5f, 0}})
-        for (int i = 0; i < 300; ++i) points.push_back(c + Vec3{g(rng), g(rng), g(rng)});
+        for (int i = 0; i < 200; ++i) points.push_back(c + Vec3{g(rng), g(rng), g(rng)});
     for (int i = 0; i < 40; ++i) points.push_back({u(rng), u(rng), u(rng)});  // stragglers: fewer than k near
     for (int i = 0; i < 10; ++i) points.push_back(points[std::size_t(i) * 7]);  // duplicates: ties by index
     std::size_t short_answers = 0;
