@@ -361,7 +361,7 @@ TEST_CASE("cut_unsupported opens a hole the cloud's rim surrounds, and keeps a b
     CHECK(mesh_topology(bump_open).boundary_loops == 1);
 }
 
-TEST_CASE("cut_unsupported takes the rim's long triangles that span the hole or have a corner over it, and no supported face") {
+TEST_CASE("cut_unsupported takes the long triangles at a hole's rim (an edge or a corner over it), no supported face") {
     // A fine sphere whose band 0.7 < z < 0.9 is coarsened, so that the faces round the hole of a
     // scan without its cap (z < 0.8) are long: some have data near their centroid and an edge
     // across the hole, as the learning leaves them round a hole in a scan.

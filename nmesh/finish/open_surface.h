@@ -32,9 +32,8 @@
 //     mesh. A face with a point near stays: no hole opens where there are points. From each
 //     region that opens, outwards, a face whose edge midpoint or corner has no data by the same
 //     test goes too (the long triangles the learning leaves round a hole, an edge across it or a
-//     corner over it). The faces go
-//     all at once (cut_faces), and the result may have several components: the sheets a single
-//     view sees apart.
+//     corner over it). The faces go all at once (cut_faces), and the result may have several
+//     components: the sheets a single view sees apart.
 //  3. Crossing faces (cut_crossings), last: the faces of every pair of crossing triangles the
 //     finishing stage left go, with what the cut takes for a manifold (a surface with a hole is
 //     valid, one that crosses itself is not). On a view's sheet the finishing stage runs without

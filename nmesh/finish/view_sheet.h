@@ -15,11 +15,12 @@
 //     so where its rays are about parallel to that direction the surface projects one to one and
 //     the triangles, counter-clockwise seen from the scanner, face it and cannot fold or cross;
 //  3. the triangles over no data go: those with an edge longer than kSheetMaxEdges typical edges
-//     where the scan is not sparse (below), or the centroid or an edge's midpoint farther from every point than kOpenEdges typical edges
-//     and kOpenSpacings local spacings (the gaps where one part hid another from the scanner, the
-//     hull across the sheet's concave outline). What is left is cut as cut_faces cuts (a manifold
-//     with boundary, no piece under kOpenMinFaces). A learnt vertex that far from the points (on
-//     the closed mesh's tube round a sheet's edge) is never triangulated;
+//     where the scan is not sparse (below), or the centroid or an edge's midpoint farther from
+//     every point than kOpenEdges typical edges and kOpenSpacings local spacings (the gaps where
+//     one part hid another from the scanner, the hull across the sheet's concave outline). What is
+//     left is cut as cut_faces cuts (a manifold with boundary, no piece under kOpenMinFaces). A
+//     learnt vertex that far from the points (on the closed mesh's tube round a sheet's edge) is
+//     never triangulated;
 //  4. front layer first, up to kSheetPasses passes: the scanner's rays are not all parallel to the
 //     view's direction, so a part it saw past the edge of a nearer one can lie behind it across
 //     the view (bunny_scan090's ear tips: vertices 5 cm apart in depth within 2 mm of each other
