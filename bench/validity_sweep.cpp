@@ -91,8 +91,8 @@ Run run_one(const std::string& name, const nmesh::PointCloud& cloud, std::uint32
         r.inward_share = q.faces > 0 ? double(q.inward_faces) / double(q.faces) : 0.0;
         if (q.inward_faces > 0) {
             const nmesh::TriangleBvh bvh(res.mesh);
-            r.inward_patch = nmesh::metrics_detail::largest_patch(res.mesh,
-                                                                  nmesh::metrics_detail::inward_face_flags(res.mesh, bvh));
+            const auto inward = nmesh::metrics_detail::inward_face_flags(res.mesh, bvh);
+            r.inward_patch = nmesh::metrics_detail::largest_patch(res.mesh, inward);
         }
         r.hausdorff_rel = q.hausdorff_rel;
         r.seconds_learning = res.stats.seconds;
@@ -173,13 +173,13 @@ int main(int argc, char** argv) {
     {
         std::ofstream out(csv);
         out << "cloud,vertices,seed,finish,crossing_pairs,signed_volume,inward_share,inward_patch,hausdorff_rel,closed,"
-               "genus,"
-               "boundary_loops,components,seconds_learning,seconds_finish,error\n";
+               "genus,boundary_loops,components,seconds_learning,seconds_finish,error\n";
         out.precision(6);
         for (const Run& r : runs)
             out << r.cloud << ',' << r.vertices << ',' << r.seed << ',' << (r.finish ? 1 : 0) << ',' << r.crossing_pairs
-                << ',' << r.volume << ',' << r.inward_share << ',' << r.inward_patch << ',' << r.hausdorff_rel << ',' << (r.closed ? 1 : 0)
-                << ',' << r.genus << ',' << r.boundary_loops << ',' << r.components << ',' << r.seconds_learning << ','
+                << ',' << r.volume << ',' << r.inward_share << ',' << r.inward_patch << ',' << r.hausdorff_rel << ','
+                << (r.closed ? 1 : 0) << ',' << r.genus << ',' << r.boundary_loops << ',' << r.components << ','
+                << r.seconds_learning << ','
                 << r.seconds_finish << ",\"" << r.error << "\"\n";
     }
     // Summary per cloud, size and stage setting, in the order run.
@@ -195,8 +195,9 @@ int main(int argc, char** argv) {
         << ")\n\nEach row: one cloud and size, with the finishing stage (`finished`) or without it "
            "(`learnt`), over the seeds. Crossing pairs by the exact test; a face points inward when the point just "
            "off it along its normal has a nonzero winding number, and the largest inward patch is the most faces "
-           "in one edge-connected patch of them (a fold turns a few triangles over, a twist a whole region); Hausdorff distance in % of the cloud's "
-           "bounding-box diagonal; the largest ratio of the finishing stage's time to the learning's.\n\n";
+           "in one edge-connected patch of them (a fold turns a few triangles over, a twist a whole region); "
+           "Hausdorff distance in % of the cloud's bounding-box diagonal; the largest ratio of the finishing "
+           "stage's time to the learning's.\n\n";
     out << "| cloud | vertices | stage | runs | with crossings | most pairs | with inward faces | most inward | "
            "largest inward patch | "
            "negative volume | genus (runs) | with boundary | most loops | most components | Hausdorff median | max | "
@@ -241,8 +242,9 @@ int main(int argc, char** argv) {
                       "| %s | %u | %s | %zu | %zu | %zu | %zu | %.2f%% | %zu | %zu | %s | %zu | %zu | %zu "
                       "| %.2f%% | %.2f%% | %.2f | %.2f | %zu |\n",
                       std::get<0>(key).c_str(), std::get<1>(key), std::get<2>(key) ? "finished" : "learnt", g.size(),
-                      crossing, most, inward, 100.0 * most_inward, largest_patch, negative, genus_text.c_str(), bounded, most_loops,
-                      most_components, s.median, s.max, s.median > 0.0 ? s.max / s.median : 0.0, finish_ratio, errors);
+                      crossing, most, inward, 100.0 * most_inward, largest_patch, negative, genus_text.c_str(), bounded,
+                      most_loops, most_components, s.median, s.max, s.median > 0.0 ? s.max / s.median : 0.0,
+                      finish_ratio, errors);
         out << buf;
     }
     std::snprintf(buf, sizeof buf, "\n%zu runs in %.0f s.\n", runs.size(), seconds);

@@ -96,15 +96,13 @@ IndexedMesh view_sheet(const Mesh& mesh, const PointGrid& cloud, const CloudView
     auto far = [&](const Vec3& p) { return no_data(cloud.find_nearest(p), view, typical); };
     auto over_gap = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
         const float longest = std::max({distance(a, b), distance(b, c), distance(c, a)});
+        if (longest > kSheetSparseEdges * typical) return true;
         // Longer than kSheetMaxEdges typical edges: kept only in a sparse part of the scan, where
         // it is shorter than kSheetMaxSpacings local spacings (and kSheetSparseEdges typical edges).
-        if (longest > kSheetMaxEdges * typical) {
-            if (longest > kSheetSparseEdges * typical) return true;
-            const NearestPoint near = cloud.find_nearest((a + b + c) * (1.0f / 3.0f));
-            if (longest > kSheetMaxSpacings * view.rim.spacing[near.index]) return true;
-        }
-        return far((a + b + c) * (1.0f / 3.0f)) || far((a + b) * 0.5f) ||
-               far((b + c) * 0.5f) || far((c + a) * 0.5f);
+        const NearestPoint near = cloud.find_nearest((a + b + c) * (1.0f / 3.0f));
+        if (longest > kSheetMaxEdges * typical && longest > kSheetMaxSpacings * view.rim.spacing[near.index])
+            return true;
+        return no_data(near, view, typical) || far((a + b) * 0.5f) || far((b + c) * 0.5f) || far((c + a) * 0.5f);
     };
     std::vector<float> depth(positions.size());
     std::vector<Point2d> across(positions.size());
