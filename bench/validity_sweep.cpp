@@ -26,7 +26,7 @@
 #include "nmesh/geometry/triangle_bvh.h"
 #include "nmesh/io.h"
 #include "nmesh/metrics.h"
-#include "nmesh/metrics/orientation.h"
+#include "nmesh/mesh/orientation.h"
 #include "nmesh/reconstruct.h"
 #include "summary.h"
 
@@ -91,8 +91,8 @@ Run run_one(const std::string& name, const nmesh::PointCloud& cloud, std::uint32
         r.inward_share = q.faces > 0 ? double(q.inward_faces) / double(q.faces) : 0.0;
         if (q.inward_faces > 0) {
             const nmesh::TriangleBvh bvh(res.mesh);
-            const auto inward = nmesh::metrics_detail::inward_face_flags(res.mesh, bvh);
-            r.inward_patch = nmesh::metrics_detail::largest_patch(res.mesh, inward);
+            const auto inward = nmesh::inward_face_flags(res.mesh, bvh);
+            r.inward_patch = nmesh::largest_patch(res.mesh, inward);
         }
         r.hausdorff_rel = q.hausdorff_rel;
         r.seconds_learning = res.stats.seconds;

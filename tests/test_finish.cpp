@@ -15,6 +15,7 @@
 #include "sanitized.h"
 #include "nmesh/finish/finish.h"
 #include "nmesh/geometry/closest_point.h"
+#include "nmesh/geometry/flatness.h"
 #include "nmesh/mesh/mesh.h"
 #include "nmesh/mesh/mesh_check.h"
 #include "nmesh/metrics.h"

@@ -21,7 +21,7 @@
 
 #include "nmesh/error.h"
 #include "nmesh/metrics.h"
-#include "nmesh/metrics/orientation.h"
+#include "nmesh/mesh/orientation.h"
 #include "nmesh/reconstruct.h"
 #include "cloud_fixtures.h"
 #include "mesh_fixtures.h"
@@ -1197,12 +1197,12 @@ TEST_CASE("orientation: the largest edge-connected patch of flagged faces") {
     }
     REQUIRE(singles.size() == 3);
     REQUIRE(cap > 10);
-    CHECK(nmesh::metrics_detail::largest_patch(sphere, flags) == cap);
+    CHECK(nmesh::largest_patch(sphere, flags) == cap);
     std::vector<std::uint8_t> only_singles(flags.size(), 0);
     for (const std::uint32_t s : singles) only_singles[s] = 1;
-    CHECK(nmesh::metrics_detail::largest_patch(sphere, only_singles) == 1);
-    CHECK(nmesh::metrics_detail::largest_patch(sphere, std::vector<std::uint8_t>(flags.size(), 0)) == 0);
-    CHECK(nmesh::metrics_detail::largest_patch(sphere, std::vector<std::uint8_t>(flags.size(), 1)) == flags.size());
+    CHECK(nmesh::largest_patch(sphere, only_singles) == 1);
+    CHECK(nmesh::largest_patch(sphere, std::vector<std::uint8_t>(flags.size(), 0)) == 0);
+    CHECK(nmesh::largest_patch(sphere, std::vector<std::uint8_t>(flags.size(), 1)) == flags.size());
     // Two faces sharing only a vertex: two patches of one.
     IndexedMesh fan = icosphere(1);
     std::vector<std::uint8_t> two(fan.triangles.size(), 0);
@@ -1218,26 +1218,26 @@ TEST_CASE("orientation: the largest edge-connected patch of flagged faces") {
         }
     }
     REQUIRE(std::count(two.begin(), two.end(), std::uint8_t(1)) == 2);
-    CHECK(nmesh::metrics_detail::largest_patch(fan, two) == 1);
+    CHECK(nmesh::largest_patch(fan, two) == 1);
     // The cap reversed: the inward test flags it, one patch.
     for (std::uint32_t t = 0; t < sphere.triangles.size(); ++t)
         if (flags[t] && std::find(singles.begin(), singles.end(), t) == singles.end())
             std::swap(sphere.triangles[t][1], sphere.triangles[t][2]);
     const nmesh::TriangleBvh bvh(sphere);
-    const auto inward = nmesh::metrics_detail::inward_face_flags(sphere, bvh);
+    const auto inward = nmesh::inward_face_flags(sphere, bvh);
     const std::size_t flagged = std::size_t(std::count(inward.begin(), inward.end(), std::uint8_t(1)));
     CHECK(flagged <= cap);
     CHECK(flagged >= cap * 9 / 10);  // a face at the cap's edge may count either way
-    CHECK(nmesh::metrics_detail::largest_patch(sphere, inward) >= cap * 9 / 10);
+    CHECK(nmesh::largest_patch(sphere, inward) >= cap * 9 / 10);
 }
 
 TEST_CASE("orient_outward reverses an inside-out closed mesh and leaves an outward one alone") {
     IndexedMesh m = icosphere(2);
     const IndexedMesh outward = m;
-    CHECK_FALSE(nmesh::metrics_detail::orient_outward(m));
+    CHECK_FALSE(nmesh::orient_outward(m));
     CHECK(m.triangles == outward.triangles);
     for (auto& t : m.triangles) std::swap(t[1], t[2]);
-    CHECK(nmesh::metrics_detail::orient_outward(m));
+    CHECK(nmesh::orient_outward(m));
     CHECK(m.triangles == outward.triangles);
     CHECK(quick_evaluate(m).signed_volume > 0.0);
 }

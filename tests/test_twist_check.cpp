@@ -16,7 +16,7 @@
 #include "nmesh/learn/neural_mesh.h"
 #include "nmesh/learn/twist_check.h"
 #include "nmesh/mesh/mesh.h"
-#include "nmesh/metrics/orientation.h"
+#include "nmesh/mesh/orientation.h"
 #include "nmesh/reconstruct.h"
 #include "nmesh/util/random.h"
 
@@ -28,7 +28,7 @@ namespace {
 // The largest region of inward faces by flood fill over every pair of faces (two faces are
 // neighbours when they share two vertices). O(F^2).
 std::size_t brute_force_region(const IndexedMesh& m) {
-    const std::vector<std::uint8_t> inward = metrics_detail::inward_face_flags(m, TriangleBvh(m));
+    const std::vector<std::uint8_t> inward = inward_face_flags(m, TriangleBvh(m));
     const std::size_t f = m.triangles.size();
     const auto shared = [&](std::size_t a, std::size_t b) {
         int n = 0;

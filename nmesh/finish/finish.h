@@ -117,8 +117,8 @@ struct FinishReport {
 // Runs the stage on `mesh` (positions in the same frame as `cloud`, which must not be empty),
 // first building its face index when it has none (Mesh::build_faces); the passes below, used
 // alone, need a mesh that has one.
-// A flat cloud (is_flat) is left alone: its mesh is two coinciding sheets, every triangle touching
-// one of the other sheet, and no normal tells the sides apart.
+// A flat cloud (is_flat, nmesh/geometry/flatness.h) is left alone: its mesh is two coinciding
+// sheets, every triangle touching one of the other sheet, and no normal tells the sides apart.
 // `cloud_index`: a nearest-point index over exactly the points of `cloud`, in the same order and
 // frame (for instance the learning engine's, built over the same points through a
 // PointTransform), which then is not built again; null: the stage builds its own.
@@ -127,8 +127,5 @@ struct FinishReport {
 FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const FinishOptions& options = {},
                          const PointGrid* cloud_index = nullptr,
                          const std::function<void(double fraction)>& progress = {});
-
-// Whether all the points lie in one plane (up to 1e-6 of their extent).
-bool is_flat(PointSpan cloud);
 
 }  // namespace nmesh

@@ -10,13 +10,14 @@
 #include "nmesh/spatial/cloud_sample.h"
 #include "nmesh/error.h"
 #include "nmesh/finish/finish.h"
+#include "nmesh/geometry/flatness.h"
 #include "nmesh/mesh/mesh_pieces.h"
 #include "nmesh/finish/open_surface.h"
 #include "nmesh/finish/view_sheet.h"
 #include "nmesh/metrics.h"
 #include "nmesh/geometry/triangle_bvh.h"
 #include "nmesh/geometry/triangle_intersection.h"
-#include "nmesh/metrics/orientation.h"
+#include "nmesh/mesh/orientation.h"
 #include "nmesh/learn/neural_mesh.h"
 #include "nmesh/learn/solid_start.h"
 #include "nmesh/learn/twist_check.h"
@@ -443,8 +444,8 @@ void check_output(Result& result) {
     result.stats.genus = t.genus;
     result.stats.boundary_loops = t.boundary_loops;
     if (t.closed) {
-        result.stats.reoriented = metrics_detail::orient_outward(result.mesh);
-        result.stats.inward_faces = metrics_detail::inward_faces(result.mesh, TriangleBvh(result.mesh));
+        result.stats.reoriented = orient_outward(result.mesh);
+        result.stats.inward_faces = inward_faces(result.mesh, TriangleBvh(result.mesh));
     }
     result.stats.crossing_pairs = count_self_intersections(result.mesh);
 }

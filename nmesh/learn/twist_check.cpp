@@ -7,13 +7,13 @@
 #include <vector>
 
 #include "nmesh/geometry/triangle_bvh.h"
-#include "nmesh/metrics/orientation.h"
+#include "nmesh/mesh/orientation.h"
 
 namespace nmesh {
 
 std::size_t largest_inward_region(const Mesh& mesh) {
     const IndexedMesh m = mesh.to_indexed();
-    const std::vector<std::uint8_t> inward = metrics_detail::inward_face_flags(m, TriangleBvh(m));
+    const std::vector<std::uint8_t> inward = inward_face_flags(m, TriangleBvh(m));
     // The edges of the inward faces, sorted by their end points: a run of one edge joins the
     // faces on its two sides (union-find).
     std::vector<std::array<std::uint32_t, 3>> edges;  // {smaller end, larger end, face}

@@ -10,8 +10,8 @@
 namespace nmesh {
 
 // The number of faces in the largest edge-connected region of faces that point inward (the
-// output check's exact winding-number test, metrics_detail::inward_face_flags), 0 when none
-// does. A closed mesh only. A twist, a part of the surface pulled through itself, is such a
+// output check's exact winding-number test, inward_face_flags in nmesh/mesh/orientation.h), 0
+// when none does. A closed mesh only. A twist, a part of the surface pulled through itself, is such a
 // region, and grows with the mesh; the learning's small folds are scattered faces. O(F log F).
 std::size_t largest_inward_region(const Mesh& mesh);
 

@@ -21,16 +21,14 @@
 #include "nmesh/spatial/point_grid.h"
 #include "nmesh/geometry/triangle_bvh.h"
 #include "nmesh/geometry/triangle_intersection.h"
-#include "nmesh/metrics/orientation.h"
+#include "nmesh/mesh/orientation.h"
 #include "nmesh/metrics/topology.h"
 #include "nmesh/util/random.h"
 
 namespace nmesh {
 
 using metrics_detail::analyze_topology;
-using metrics_detail::inward_faces;
 using metrics_detail::is_degenerate;
-using metrics_detail::signed_volume;
 
 namespace {
 

@@ -1,12 +1,12 @@
-#include "nmesh/metrics/orientation.h"
-
-#include "nmesh/mesh/mesh_pieces.h"
+#include "nmesh/mesh/orientation.h"
 
 #include <algorithm>
 #include <cmath>
 #include <utility>
 
-namespace nmesh::metrics_detail {
+#include "nmesh/mesh/mesh_pieces.h"
+
+namespace nmesh {
 namespace {
 
 struct Point3 {
@@ -101,4 +101,4 @@ std::size_t largest_patch(const IndexedMesh& mesh, const std::vector<std::uint8_
     return largest;
 }
 
-}  // namespace nmesh::metrics_detail
+}  // namespace nmesh

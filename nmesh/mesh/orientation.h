@@ -1,5 +1,6 @@
-// nmesh/metrics/orientation.h — which way a closed mesh faces: its signed volume, and the faces
-// that point into the solid it bounds instead of out of it.
+// nmesh/mesh/orientation.h — which way a closed mesh faces: its signed volume, and the faces
+// that point into the solid it bounds instead of out of it. The learning's checkpoints ask it
+// (nmesh/learn/twist_check.h), and so do the output check and the metrics above them.
 #pragma once
 
 #include <cstddef>
@@ -9,7 +10,7 @@
 #include "nmesh/geometry/triangle_bvh.h"
 #include "nmesh/indexed_mesh.h"
 
-namespace nmesh::metrics_detail {
+namespace nmesh {
 
 // The signed volume enclosed by the triangles (positive when a closed mesh is oriented outward,
 // counter-clockwise seen from outside), in double.
@@ -33,4 +34,4 @@ std::size_t largest_patch(const IndexedMesh& mesh, const std::vector<std::uint8_
 // outward; returns whether it did.
 bool orient_outward(IndexedMesh& mesh);
 
-}  // namespace nmesh::metrics_detail
+}  // namespace nmesh
