@@ -7,8 +7,9 @@
 //     nmesh::write_mesh("bunny_mesh.ply", r.mesh);
 //
 // The algorithm is Neural Meshes (Ivrissimtzis, Jeong and Seidel 2003) with the edge swap of
-// Neural Meshes ES (Mari et al.); see nmesh/neural_mesh.cpp for the steps and README.md for the
-// choices made where the papers leave room.
+// Neural Meshes ES (Mari et al.); see nmesh/learn/neural_mesh.cpp for the steps, nmesh/pipeline/ for
+// the stages around the learning, and docs/algorithm.md for the choices made where the papers
+// leave room.
 #pragma once
 
 #include <cstdint>
@@ -59,7 +60,7 @@ struct Callbacks {
 };
 
 struct Result {
-    IndexedMesh mesh;  // a closed genus-0 2-manifold, in the input's coordinates
+    IndexedMesh mesh;  // a 2-manifold facing outward (closed unless topology open), in the input's coordinates
     Statistics stats;
     bool cancelled = false;
 };

@@ -1,0 +1,39 @@
+// The pipeline's finishing stage (nmesh/pipeline/finishing.h).
+#include "nmesh/pipeline/finishing.h"
+
+#include "nmesh/finish/finish.h"
+#include "nmesh/spatial/cloud_sample.h"
+
+namespace nmesh::pipeline {
+
+// One default for the finishing stage's rounds, whether it is run through reconstruct() or alone.
+static_assert(FinishOptions{}.rounds == int(Parameters{}.finish_rounds), "two defaults for the finishing rounds");
+static_assert(FinishOptions{}.fit_rounds == int(Parameters{}.fit_rounds), "two defaults for the centroid fit");
+
+const PointGrid& cloud_index_of(std::shared_ptr<PointGrid>& cloud_index, PointSpan cloud, const Normalization& norm,
+                                const Parameters& params, Statistics& stats) {
+    if (!cloud_index) {
+        cloud_index = index_cloud(cloud, norm.transform, norm.bounds, params);
+        record_index(*cloud_index, stats);
+    }
+    return *cloud_index;
+}
+
+bool finish_stage(const Mesh& learnt, std::shared_ptr<PointGrid>& cloud_index, PointSpan cloud,
+                  const Normalization& norm, const Parameters& params, Reporter& reporter, Statistics& stats,
+                  Mesh& mesh, double progress_from, double progress_share, bool repair, bool last_resort) {
+    const PointGrid& index = cloud_index_of(cloud_index, cloud, norm, params, stats);
+    mesh = learnt;
+    FinishOptions options;
+    options.rounds = int(params.finish_rounds);
+    options.fit_rounds = int(params.fit_rounds);
+    if (!repair) options.repair_max_rounds = 0;
+    options.off_cloud_last_resort = last_resort;
+    const FinishReport report =
+        finish_mesh(mesh, index.indexed_points(), options, &index,
+                    [&](double fraction) { reporter.report_finishing(progress_from + progress_share * fraction); });
+    stats.repair_declined = stats.repair_declined || report.repair_declined;
+    return mesh.n_vertices() == learnt.n_vertices();
+}
+
+}  // namespace nmesh::pipeline

@@ -1,0 +1,123 @@
+// reconstruct(): the pipeline's stages in their order. The cloud is checked and normalised
+// (normalization.h); the learning starts from the solid the cloud walls round or from the
+// tetrahedron (nmesh/learn/solid_start.h); it learns to the target size with its checkpoints
+// (learning.h); the learnt mesh is finished (finishing.h), or, with topology open, finished and
+// cut open where the cloud has no data (opening.h); the output is turned outward and checked
+// (output_check.h), and a small target whose output is not valid is learnt again from its last
+// checkpoint.
+#include "nmesh/reconstruct.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <utility>
+
+#include "nmesh/geometry/flatness.h"
+#include "nmesh/learn/neural_mesh.h"
+#include "nmesh/learn/solid_start.h"
+#include "nmesh/pipeline/finishing.h"
+#include "nmesh/pipeline/learning.h"
+#include "nmesh/pipeline/normalization.h"
+#include "nmesh/pipeline/opening.h"
+#include "nmesh/pipeline/output_check.h"
+#include "nmesh/pipeline/reporter.h"
+
+namespace nmesh {
+
+double estimated_seconds_left(const Progress& p) {
+    if (p.settling || p.target_vertices == 0 || p.vertices == 0) return -1.0;
+    const double fraction = std::min(1.0, double(p.vertices) / double(p.target_vertices));
+    const double loop = std::max(0.0, p.seconds - p.setup_seconds);
+    return loop * (1.0 - fraction) / fraction;
+}
+
+using namespace pipeline;
+
+Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& callbacks) {
+    params.validate();
+    const auto start = Clock::now();
+    const Normalization norm(require_reconstructible(cloud));
+    // The fold guard is off for a flat cloud: its closed mesh must fold flat, two coinciding sheets.
+    Parameters learning = params;
+    learning.fold_guard = params.fold_guard && !is_flat(cloud);
+    // On the heap, so that it can be destroyed, and its memory freed, as soon as the learning ends.
+    // Topology closed and open: from the solid's surface when the cloud walls a solid round
+    // (solid_start.h), its genus kept (the handle search off: a handle the solid's offset closes
+    // is narrower than a few point spacings); otherwise, and in sphere mode, from the
+    // tetrahedron, with the handle search.
+    SolidStart solid;
+    if (params.topology != Topology::sphere && params.solid_start)
+        solid = solid_start(cloud, norm.transform, params.target_vertices);
+    const std::uint64_t start_vertices = solid.mesh ? solid.mesh->n_vertices() : 4;
+    std::unique_ptr<NeuralMesh> engine =
+        solid.mesh ? std::make_unique<NeuralMesh>(cloud, norm.bounds, learning, norm.transform, std::move(*solid.mesh))
+                   : std::make_unique<NeuralMesh>(cloud, norm.bounds, learning, norm.transform);
+    if (solid.mesh) engine->keep_genus();
+    solid.mesh.reset();
+    engine->set_profiling(callbacks.profile);
+    Reporter reporter(callbacks, engine, params.target_vertices, start);
+
+    Checkpoints checkpoints(*engine, params);
+    // Output retries, for a target up to twice the last checkpoint (which is then at least half
+    // the learning) and with the finishing stage (without it the learnt mesh is wanted as it is).
+    // A larger target is not retried: its last checkpoint is most of the learning back, and the
+    // defects left there come from before it (the eight at 10,000 vertices, seed 18: a spurious
+    // handle made at 3,888 vertices).
+    const std::uint32_t output_retries =
+        checkpoints.on && params.finish && params.target_vertices <= 2 * kLastCheckpoint ? kOutputRetries : 0;
+    Result result;
+    double finish_seconds = 0.0;  // the finishing stage's time over the attempts
+    for (std::uint32_t attempt = 0;; ++attempt) {
+        learn_to_target(*engine, cloud.size(), params, callbacks, norm, reporter, checkpoints);
+        if (!reporter.cancelled()) settle(*engine, params, reporter);
+        const double learnt_at = reporter.elapsed();
+
+        result = Result();
+        result.cancelled = reporter.cancelled();
+        result.stats = engine->stats();
+        result.stats.solid_genus = solid.solid_genus;
+        result.stats.start_vertices = start_vertices;
+        // The last progress report: the learning is over.
+        if (!result.cancelled) reporter.report(params.settle > 0.0);
+        const bool finish = !result.cancelled && params.finish;
+        // The learnt mesh and the cloud's index leave the engine, which is destroyed: what
+        // follows does not add to the memory of the grid, activity index and ring cache.
+        Mesh learnt = engine->take_mesh();
+        const bool open = !result.cancelled && params.topology == Topology::open;
+        std::shared_ptr<PointGrid> cloud_index = finish || open ? engine->take_cloud_index() : nullptr;
+        engine.reset();
+
+        // No output retry left: the finishing stage may take its last resort.
+        const bool last = attempt >= output_retries || !checkpoints.on || !checkpoints.last;
+        if (open) {
+            open_output(learnt, finish, last, cloud_index, cloud, norm, params, reporter, result);
+        } else {
+            Mesh finished;
+            result.stats.finished = finish && finish_stage(learnt, cloud_index, cloud, norm, params, reporter,
+                                                           result.stats, finished, 0.0, 1.0, true, last);
+            if (result.stats.finished) learnt = Mesh();  // freed before the output mesh is built
+            result.mesh = (result.stats.finished ? finished : learnt).to_indexed();
+        }
+        cloud_index.reset();
+        result.mesh = norm.to_input(result.mesh);
+        // The learning's time leaves out the finishing of earlier attempts.
+        const double finishing = finish ? reporter.elapsed() - learnt_at : 0.0;
+        result.stats.seconds = learnt_at - finish_seconds;
+        finish_seconds += finishing;
+        result.stats.seconds_finish = finish_seconds;
+        check_output(result);
+        result.stats.output_retries = checkpoints.counts.output_retries;
+        const bool valid = result.stats.crossing_pairs == 0 && result.stats.inward_faces == 0;
+        if (valid || result.cancelled || attempt >= output_retries || !checkpoints.on || !checkpoints.last) break;
+        // The output check failed: the learning again from its last checkpoint, on another
+        // path, in a new engine with the room for the target.
+        ++checkpoints.counts.output_retries;
+        engine = std::make_unique<NeuralMesh>(checkpoints.last->engine);
+        engine->reserve_target();
+        checkpoints.restore(*engine, *checkpoints.last);
+    }
+    return result;
+}
+
+}  // namespace nmesh
