@@ -22,8 +22,9 @@ inline Mesh octahedron() {
     return Mesh::from_indexed(m);
 }
 
-// The icosahedron: 12 vertices of valence 5 on the unit sphere; a roomier start than a tetrahedron.
-inline Mesh icosahedron() {
+// The icosahedron as a triangle list: 12 vertices on the unit sphere, counter-clockwise seen from
+// outside.
+inline IndexedMesh icosahedron_triangles() {
     const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
     IndexedMesh m;
     m.positions = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
@@ -32,8 +33,11 @@ inline Mesh icosahedron() {
     m.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
                    {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
                    {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-    return Mesh::from_indexed(m);
+    return m;
 }
+
+// The icosahedron: 12 vertices of valence 5 on the unit sphere; a roomier start than a tetrahedron.
+inline Mesh icosahedron() { return Mesh::from_indexed(icosahedron_triangles()); }
 
 // The triangular bipyramid (5 vertices): the equator vertices 0, 1, 2 share three neighbours
 // pairwise, so collapsing an equator edge breaks the link condition; the apexes 3 and 4 have
@@ -49,14 +53,7 @@ inline Mesh bipyramid() {
 // vertices pushed onto the unit sphere, then moved by `center`. Closed, genus 0, counter-clockwise
 // seen from outside, 10 * 4^levels + 2 vertices; its triangles approach equilateral.
 inline IndexedMesh icosphere(int levels, const Vec3& center = {0, 0, 0}) {
-    const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
-    IndexedMesh m;
-    m.positions = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
-                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
-    m.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                   {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                   {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-    for (Vec3& p : m.positions) p = normalized(p);
+    IndexedMesh m = icosahedron_triangles();
     for (int level = 0; level < levels; ++level) {
         std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> middle;
         const auto mid = [&](std::uint32_t a, std::uint32_t b) {

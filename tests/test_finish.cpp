@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <map>
 #include <utility>
 
 #include "cloud_fixtures.h"
@@ -28,36 +27,10 @@
 using namespace nmesh;
 using nmesh::test::bundled_bunny;
 using nmesh::test::icosahedron;
+using nmesh::test::icosphere;
 using nmesh::test::sphere_cloud;
 
 namespace {
-
-// The icosahedron subdivided `levels` times (each triangle into four), on the unit sphere:
-// 12 vertices of valence 5, the others of valence 6, nearly equilateral triangles.
-IndexedMesh icosphere(int levels) {
-    const Mesh ico = icosahedron();
-    IndexedMesh m = ico.to_indexed();
-    for (int l = 0; l < levels; ++l) {
-        std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mid;
-        auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
-            const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-            const auto it = mid.find(key);
-            if (it != mid.end()) return it->second;
-            m.positions.push_back(normalized((m.positions[a] + m.positions[b]) * 0.5f));
-            return mid[key] = std::uint32_t(m.positions.size() - 1);
-        };
-        std::vector<std::array<std::uint32_t, 3>> faces;
-        for (const auto& t : m.triangles) {
-            const std::uint32_t a = midpoint(t[0], t[1]), b = midpoint(t[1], t[2]), c = midpoint(t[2], t[0]);
-            faces.push_back({t[0], a, c});
-            faces.push_back({t[1], b, a});
-            faces.push_back({t[2], c, b});
-            faces.push_back({a, b, c});
-        }
-        m.triangles = faces;
-    }
-    return m;
-}
 
 // Five vertices: a flat rhombus A B C D on top (split along its long diagonal A-C, so that the
 // angles at B and D are about 157 degrees: not Delaunay) and an apex E below. With `fold_deg`,
