@@ -3,7 +3,6 @@
 // Exit status: 0 success, 1 runtime error (one line naming the file and the problem),
 // 2 usage error (one line and a hint), 130 interrupted.
 #include <atomic>
-#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -151,12 +150,8 @@ void print_summary(const Result& r, const std::string& output) {
 // evaluate(), with its progress on stderr when it takes long (a cloud of millions of points).
 QualityReport evaluate_with_progress(const std::vector<Vec3>& points, const IndexedMesh& mesh, bool quiet) {
     ProgressBar bar(ProgressBar::detect(quiet));
-    const auto start = std::chrono::steady_clock::now();
     EvalOptions options;
-    options.progress = [&](double fraction) {
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        bar.task("measuring the mesh against the cloud", fraction, seconds);
-    };
+    options.progress = bar.task("measuring the mesh against the cloud");
     const QualityReport q = evaluate(points, mesh, options);
     bar.finish();
     return q;
@@ -236,10 +231,7 @@ int run_reconstruct(int argc, char** argv) {
 
     ProgressBar bar(ProgressBar::detect(quiet));
     Callbacks cb;
-    cb.progress = [&](const Progress& pr) {
-        bar.update(pr);
-        return !g_interrupted.load();
-    };
+    cb.progress = bar.reconstruction(g_interrupted);
     cb.snapshot_vertices = snapshots;
     cb.on_snapshot = [&](std::uint32_t n, const IndexedMesh& m) {
         write_mesh(snapshot_path(output, n), m, write_options);

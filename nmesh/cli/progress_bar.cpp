@@ -1,6 +1,7 @@
 #include "nmesh/cli/progress_bar.h"
 
 #include <algorithm>
+#include <chrono>
 #include <string>
 
 #include <unistd.h>
@@ -20,6 +21,20 @@ std::string clock_text(double seconds) {
     return buf;
 }
 }  // namespace
+
+std::function<bool(const Progress&)> ProgressBar::reconstruction(const std::atomic<bool>& stop) {
+    return [this, &stop](const Progress& p) {
+        update(p);
+        return !stop.load();
+    };
+}
+
+std::function<void(double)> ProgressBar::task(const char* what) {
+    const auto start = std::chrono::steady_clock::now();
+    return [this, what, start](double fraction) {
+        task(what, fraction, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    };
+}
 
 void ProgressBar::update(const Progress& p) {
     if (mode_ == Mode::quiet) return;

@@ -5,7 +5,9 @@
 // seconds. Quiet: nothing.
 #pragma once
 
+#include <atomic>
 #include <cstdio>
+#include <functional>
 
 #include "nmesh/reconstruct.h"
 
@@ -17,6 +19,12 @@ public:
     explicit ProgressBar(Mode mode, std::FILE* out = stderr) : mode_(mode), out_(out) {}
     // Picks terminal or plain from whether stderr is a terminal.
     static Mode detect(bool quiet);
+
+    // The callbacks that draw on this bar, the one place where the tool sets them up: a
+    // reconstruction's (Callbacks::progress), which draws each report and cancels once `stop` is
+    // set; another long task's (EvalOptions::progress, the share done), timed from this call.
+    std::function<bool(const Progress&)> reconstruction(const std::atomic<bool>& stop);
+    std::function<void(double fraction)> task(const char* what);
 
     void update(const Progress& p);
     // Progress of another long task (measuring the mesh for --stats or eval): `what`, the share
