@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
             share(p.seconds_swap), p.seconds);
         if (!csv.empty()) {
             std::FILE* f = std::fopen(csv.c_str(), "a");
-            if (!f) throw nmesh::IoError(csv + ": cannot open for appending");
+            if (!f) throw nmesh::IoError(csv, "cannot open for appending");
             std::fprintf(f, "%zu,%u,%d,%s,%d,%.4f,%.4f,%.4f,%.0f,%.1f,%.1f,%.1f,%.1f,%.1f,%.4f\n", cloud.size(),
                          params.target_vertices, params.edge_swap ? 1 : 0, nmesh::topology_name(params.topology), runs,
                          t.median, t.min, t.max, it.median, share(p.seconds_winner), share(p.seconds_update),

@@ -246,9 +246,9 @@ std::string format(const char* fmt, ...) {
 void append_csv(const std::string& path, const std::string& line) {
     if (path.empty()) return;
     std::FILE* f = std::fopen(path.c_str(), "a");
-    if (!f) throw nmesh::IoError(path + ": cannot open for appending");
+    if (!f) throw nmesh::IoError(path, "cannot open for appending");
     const bool ok = std::fputs(line.c_str(), f) >= 0;
-    if (std::fclose(f) != 0 || !ok) throw nmesh::IoError(path + ": cannot write");
+    if (std::fclose(f) != 0 || !ok) throw nmesh::IoError(path, "cannot write");
 }
 
 // The input storage (see the top of the file), measured in a forked child so that the parent's
@@ -424,7 +424,7 @@ struct ScratchDir {
         std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/nmesh_loading_XXXXXX";
         std::vector<char> buf(pattern.begin(), pattern.end());
         buf.push_back('\0');
-        if (!mkdtemp(buf.data())) throw nmesh::IoError(pattern + ": cannot create a scratch directory");
+        if (!mkdtemp(buf.data())) throw nmesh::IoError(pattern, "cannot create a scratch directory");
         dir = buf.data();
     }
     std::string file(const std::string& name) {
@@ -439,9 +439,9 @@ struct ScratchDir {
 
 void write_file(const std::string& path, const std::string& head, const char* data, std::size_t size) {
     std::FILE* f = std::fopen(path.c_str(), "wb");
-    if (!f) throw nmesh::IoError(path + ": cannot create");
+    if (!f) throw nmesh::IoError(path, "cannot create");
     const bool ok = std::fwrite(head.data(), 1, head.size(), f) == head.size() && std::fwrite(data, 1, size, f) == size;
-    if (std::fclose(f) != 0 || !ok) throw nmesh::IoError(path + ": cannot write");
+    if (std::fclose(f) != 0 || !ok) throw nmesh::IoError(path, "cannot write");
 }
 
 // `loading`: the cloud as binary PLY and as XYZ text, each read once, then timed R times.

@@ -71,7 +71,7 @@ nmesh::IndexedMesh run(const nmesh::PointCloud& cloud, std::uint32_t n, double a
 // right, both on one blue (low DM, good) to red (high) scale.
 void write_heatmap(const std::string& csv, const std::string& path) {
     std::ifstream in(csv);
-    if (!in) throw nmesh::IoError(csv + ": cannot open (run bench/run_paper_experiments.sh first)");
+    if (!in) throw nmesh::IoError(csv, "cannot open (run bench/run_paper_experiments.sh first)");
     std::string line;
     std::getline(in, line);  // header
     std::map<std::pair<double, double>, double> cells[2];

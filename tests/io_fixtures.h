@@ -21,6 +21,7 @@ std::string io_error_of(const std::string& path, Read read) {
     } catch (const IoError& e) {
         const std::string message = e.what();
         CHECK_MESSAGE(message.rfind(path + ": ", 0) == 0, message);
+        CHECK_MESSAGE(e.path() == path, message);  // the path alone, for a caller to use
         CHECK_MESSAGE(message.find('\n') == std::string::npos, message);
         return message;
     }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <set>
 
+#include "error_fixtures.h"
 #include "mesh_fixtures.h"
 #include "nmesh/error.h"
 #include "nmesh/mesh/mesh.h"
@@ -353,7 +354,7 @@ TEST_CASE("the size limit: 2^31 half-edges") {
     CHECK_THROWS_WITH_AS(Mesh::check_halfedge_count(std::uint64_t(Mesh::kMaxHalfedges) + 1, "test"),
                          doctest::Contains("mesh: test: 2147483649 half-edges"), InputError);
     Mesh empty;
-    CHECK_THROWS_AS(empty.reserve(Mesh::kMaxVertices + 1), ParameterError);
+    CHECK(nmesh::test::refused_parameter([&] { empty.reserve(Mesh::kMaxVertices + 1); }) == "n");
     CHECK_THROWS_WITH_AS(empty.reserve(0xffffffffu), doctest::Contains("357913943"), ParameterError);
 }
 

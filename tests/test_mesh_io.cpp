@@ -21,6 +21,7 @@
 #include "nmesh/error.h"
 #include "nmesh/io.h"
 #include "bunny_files.h"
+#include "error_fixtures.h"
 #include "io_fixtures.h"
 
 #ifndef _WIN32
@@ -31,6 +32,8 @@
 
 using nmesh::IndexedMesh;
 using nmesh::Vec3;
+using nmesh::test::refused_parameter;
+using nmesh::test::refused_path;
 using Triangle = std::array<std::uint32_t, 3>;
 
 namespace {
@@ -370,6 +373,22 @@ TEST_CASE("write_mesh refuses an unknown extension or a missing directory, creat
     CHECK_THROWS_WITH_AS(nmesh::write_mesh(dir.at("sub/file/m.ply"), mesh), doctest::Contains("is not a directory"),
                          nmesh::IoError);
     CHECK(dir.names() == std::vector<std::string>{"sub"});
+}
+
+TEST_CASE("a refused write names its file (IoError::path()) and a refused option its name (ParameterError::parameter())") {
+    const IndexedMesh mesh = random_mesh(4, 2, 1);
+    TempDir dir;
+    const std::string stl = dir.at("m.stl"), missing = dir.at("no/such/dir/m.ply");
+    CHECK(refused_path([&] { nmesh::write_mesh(stl, mesh); }) == stl);
+    CHECK(refused_path([&] { nmesh::write_mesh(missing, mesh); }) == missing);
+    CHECK(refused_path([&] { nmesh::check_mesh_output(missing); }) == missing);
+    CHECK(refused_path([&] { nmesh::check_output_location(""); }).empty());
+    CHECK(std::string(nmesh::IoError("", "no name").what()) == "(empty path): no name");
+    CHECK(std::string(nmesh::IoError("a.ply", "truncated").what()) == "a.ply: truncated");
+    nmesh::MeshWriteOptions options;
+    options.colors.resize(3);
+    CHECK(refused_parameter([&] { nmesh::write_mesh(dir.at("m.ply"), mesh, options); }) == "colors");
+    CHECK(dir.names().empty());
 }
 
 TEST_CASE("check_mesh_output and check_output_location refuse what writing would, creating nothing") {

@@ -537,13 +537,21 @@ TEST_CASE("the settling phase runs steps 1-6 only") {
 
 TEST_CASE("invalid parameters are refused, naming the parameter") {
     const PointCloud cloud = sphere_cloud(100);
-    auto refuses = [&](auto change, const char* name) {
+    // `name`: the field, which the message names and ParameterError::parameter() is; `fragment`:
+    // more of the message, when given.
+    auto refuses = [&](auto change, const char* name, const char* fragment = nullptr) {
         Parameters p;
         change(p);
-        CHECK_THROWS_WITH_AS(reconstruct(cloud, p), doctest::Contains(name), ParameterError);
+        CHECK_THROWS_WITH_AS(reconstruct(cloud, p), doctest::Contains(fragment ? fragment : name), ParameterError);
+        try {
+            reconstruct(cloud, p);
+        } catch (const ParameterError& e) {
+            CHECK(e.parameter() == name);
+            CHECK(std::string(e.what()).find(std::string("invalid parameter ") + name + ": ") == 0);
+        }
     };
     refuses([](Parameters& p) { p.target_vertices = 3; }, "target_vertices");
-    refuses([](Parameters& p) { p.target_vertices = Mesh::kMaxVertices - 15; }, "at most 357913927");
+    refuses([](Parameters& p) { p.target_vertices = Mesh::kMaxVertices - 15; }, "target_vertices", "at most 357913927");
     refuses([](Parameters& p) { p.alpha_w = -0.1; }, "alpha_w");
     refuses([](Parameters& p) { p.alpha_w = 0.0; }, "alpha_w");
     refuses([](Parameters& p) { p.alpha_n = 1.5; }, "alpha_n");
@@ -560,7 +568,7 @@ TEST_CASE("invalid parameters are refused, naming the parameter") {
             p.fit_rounds = 1;
             p.finish = false;
         },
-        "fit_rounds: needs the finishing stage");
+        "fit_rounds", "fit_rounds: needs the finishing stage");
 }
 
 TEST_CASE("clouds that cannot be reconstructed are refused with a reason") {

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "error_fixtures.h"
 #include "nmesh/error.h"
 #include "nmesh/indexed_mesh.h"
 #include "nmesh/render/png_writer.h"
@@ -33,6 +34,7 @@ using nmesh::IndexedMesh;
 using nmesh::RenderOptions;
 using nmesh::Vec3;
 using nmesh::View;
+using nmesh::test::refused_parameter;
 using Bytes = std::vector<std::uint8_t>;
 using Rgb = std::array<std::uint8_t, 3>;
 
@@ -535,10 +537,10 @@ TEST_CASE("zlib_compress uses every length and distance code correctly") {
 }
 
 TEST_CASE("encode_png refuses sizes that do not match the pixels") {
-    CHECK_THROWS_AS(nmesh::encode_png(0, 1, {}), nmesh::ParameterError);
-    CHECK_THROWS_AS(nmesh::encode_png(1, -1, {}), nmesh::ParameterError);
-    CHECK_THROWS_AS(nmesh::encode_png(2, 2, Bytes(11)), nmesh::ParameterError);
-    CHECK_THROWS_AS(nmesh::encode_png(2, 2, Bytes(13)), nmesh::ParameterError);
+    CHECK(refused_parameter([] { nmesh::encode_png(0, 1, {}); }) == "width");
+    CHECK(refused_parameter([] { nmesh::encode_png(1, -1, {}); }) == "height");
+    CHECK(refused_parameter([] { nmesh::encode_png(2, 2, Bytes(11)); }) == "rgb");
+    CHECK(refused_parameter([] { nmesh::encode_png(2, 2, Bytes(13)); }) == "rgb");
     CHECK_NOTHROW(nmesh::encode_png(2, 2, Bytes(12)));
 }
 
@@ -1071,33 +1073,40 @@ TEST_CASE("render handles empty and degenerate meshes and refuses bad options") 
 
     const IndexedMesh m = cube();
     RenderOptions bad = small();
+    // Each refusal names the option (ParameterError::parameter()).
+    const auto refused = [&](const RenderOptions& options) {
+        return refused_parameter([&] { nmesh::render(m, options); });
+    };
     bad.width = 0;
-    CHECK_THROWS_AS(nmesh::render(m, bad), nmesh::ParameterError);
+    CHECK(refused(bad) == "width");
     bad = small();
     bad.height = 16385;
-    CHECK_THROWS_AS(nmesh::render(m, bad), nmesh::ParameterError);
+    CHECK(refused(bad) == "height");
     bad = small();
     bad.supersample = 5;
-    CHECK_THROWS_AS(nmesh::render(m, bad), nmesh::ParameterError);
+    CHECK(refused(bad) == "supersample");
     bad = small();
     bad.view = {0.0, 91.0};
-    CHECK_THROWS_AS(nmesh::render(m, bad), nmesh::ParameterError);
+    CHECK(refused(bad) == "view.elevation_deg");
     bad = small();
     bad.view = {NAN, 0.0};
-    CHECK_THROWS_AS(nmesh::render(m, bad), nmesh::ParameterError);
+    CHECK(refused(bad) == "view.azimuth_deg");
     std::vector<float> too_few(3, 0.0f);
     bad = small();
     bad.vertex_values = &too_few;
-    CHECK_THROWS_AS(nmesh::render(m, bad), nmesh::ParameterError);
+    CHECK(refused(bad) == "vertex_values");
     std::vector<float> with_nan(8, 0.0f);
     with_nan[4] = NAN;
     bad.vertex_values = &with_nan;
-    CHECK_THROWS_AS(nmesh::render(m, bad), nmesh::ParameterError);
+    CHECK(refused(bad) == "vertex_values");
     std::vector<float> fine(8, 0.0f);
     bad.vertex_values = &fine;
     bad.value_min = 2.0f;
     bad.value_max = 1.0f;
-    CHECK_THROWS_AS(nmesh::render(m, bad), nmesh::ParameterError);
+    CHECK(refused(bad) == "value_min");
+    bad.value_min.reset();
+    bad.value_max = NAN;
+    CHECK(refused(bad) == "value_max");
     IndexedMesh broken = m;
     broken.triangles[3][1] = 8;
     CHECK_THROWS_AS(nmesh::render(broken, small()), nmesh::InputError);

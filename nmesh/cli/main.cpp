@@ -242,7 +242,7 @@ int run_reconstruct(int argc, char** argv) {
     try {
         r = reconstruct(cloud, p, cb);
     } catch (const InputError& e) {
-        throw IoError(input + ": " + e.what());
+        throw IoError(input, e.what());
     }
     bar.finish();
     if (r.cancelled) {
@@ -293,7 +293,7 @@ int run_eval(int argc, char** argv) {
     if (args.positional().size() != 2) throw UsageError("eval takes two files: POINTS MESH");
     const PointCloud cloud = read_points(args.positional()[0]);
     const IndexedMesh mesh = read_mesh(args.positional()[1]);
-    if (cloud.empty()) throw IoError(args.positional()[0] + ": no points");
+    if (cloud.empty()) throw IoError(args.positional()[0], "no points");
     const QualityReport q = evaluate_with_progress(cloud.points, mesh, false);
     if (args.has("--json")) {
         write_json(std::cout, q);

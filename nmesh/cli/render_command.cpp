@@ -106,7 +106,7 @@ View parse_view(const Arguments& args) {
 std::vector<float> error_map(const std::string& points_path, const IndexedMesh& mesh, double error_max,
                              RenderOptions& options) {
     const PointCloud cloud = read_points(points_path);
-    if (cloud.empty()) throw IoError(points_path + ": no points");
+    if (cloud.empty()) throw IoError(points_path, "no points");
     std::vector<float> distances = vertex_distances_to_cloud(cloud.points, mesh);
     double largest = 0.0, sum = 0.0;
     for (const float d : distances) {
@@ -168,7 +168,7 @@ int run_render(int argc, char** argv) {
     options.supersample = int(supersample);
 
     const IndexedMesh mesh = read_mesh(input);
-    if (mesh.triangles.empty()) throw IoError(input + ": no triangles to draw (is it a point cloud?)");
+    if (mesh.triangles.empty()) throw IoError(input, "no triangles to draw (is it a point cloud?)");
     std::vector<float> distances;
     if (args.has("--error-map")) {
         distances = error_map(args.text("--error-map"), mesh, error_max, options);
@@ -178,7 +178,7 @@ int run_render(int argc, char** argv) {
     try {
         image = render(mesh, options);
     } catch (const InputError& e) {
-        throw IoError(input + ": " + e.what());
+        throw IoError(input, e.what());
     }
     write_png(output, image.width, image.height, image.rgb);
     std::fprintf(stderr, "nmesh: wrote %s (%dx%d)\n", output.c_str(), image.width, image.height);

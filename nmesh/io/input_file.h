@@ -136,7 +136,7 @@ public:
         }
     }
 
-    [[noreturn]] void fail(const std::string& what) const { throw IoError(path_ + ": " + what); }
+    [[noreturn]] void fail(const std::string& what) const { throw IoError(path_, what); }
     [[noreturn]] void fail_at_line(std::uint64_t line, const std::string& what) const {
         fail("line " + std::to_string(line) + ": " + what);
     }

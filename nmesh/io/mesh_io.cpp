@@ -62,21 +62,21 @@ std::string close_stream(std::ofstream& out) {
 
 void check_output_location(const std::string& path) {
     namespace fs = std::filesystem;
-    if (path.empty()) throw IoError("(empty path): cannot write a file without a name");
+    if (path.empty()) throw IoError("", "cannot write a file without a name");
     if (is_special_file(path)) return;  // written in place: its directory is not written
     const fs::path dir = fs::path(path).parent_path();
     std::error_code ec;
     if (!dir.empty() && !fs::is_directory(dir, ec)) {
-        throw IoError(path + ": cannot write: " +
+        throw IoError(path, "cannot write: " +
                       (fs::exists(dir, ec) ? "'" + dir.string() + "' is not a directory"
                                            : "directory '" + dir.string() + "' does not exist"));
     }
 #ifndef _WIN32
     const std::string d = dir.empty() ? std::string(".") : dir.string();
     if (::access(d.c_str(), W_OK | X_OK) != 0)
-        throw IoError(path + ": cannot write: directory '" + d + "': " + std::strerror(errno));
+        throw IoError(path, "cannot write: directory '" + d + "': " + std::strerror(errno));
 #endif
-    if (fs::is_directory(fs::path(path), ec)) throw IoError(path + ": cannot write: is a directory");
+    if (fs::is_directory(fs::path(path), ec)) throw IoError(path, "cannot write: is a directory");
 }
 
 void check_mesh_output(const std::string& path) {
@@ -91,17 +91,17 @@ void write_file_atomically(const std::string& path, const std::function<void(std
         // A temporary renamed over a device or a pipe would replace it with a regular file
         // (/dev/null itself): such a target is written in place.
         std::ofstream out(path, std::ios::binary);
-        if (!out) throw IoError(path + ": cannot open for writing: " + std::strerror(errno));
+        if (!out) throw IoError(path, std::string("cannot open for writing: ") + std::strerror(errno));
         body(out);
         const std::string failure = close_stream(out);
-        if (!failure.empty()) throw IoError(path + ": write failed: " + failure);
+        if (!failure.empty()) throw IoError(path, "write failed: " + failure);
         return;
     }
 
     const std::string temp =
         path + ".tmp-" + std::to_string(process_id()) + "-" + std::to_string(temp_counter.fetch_add(1));
     std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) throw IoError(path + ": cannot create '" + temp + "': " + std::strerror(errno));
+    if (!out) throw IoError(path, "cannot create '" + temp + "': " + std::strerror(errno));
     const auto discard = [&] {
         out.close();
         std::error_code ignored;
@@ -116,13 +116,13 @@ void write_file_atomically(const std::string& path, const std::function<void(std
     const std::string failure = close_stream(out);
     if (!failure.empty()) {
         discard();
-        throw IoError(path + ": write failed: " + failure);
+        throw IoError(path, "write failed: " + failure);
     }
     std::error_code ec;
     fs::rename(temp, path, ec);
     if (ec) {
         discard();
-        throw IoError(path + ": cannot replace it with the new file: " + ec.message());
+        throw IoError(path, "cannot replace it with the new file: " + ec.message());
     }
 }
 
@@ -294,7 +294,7 @@ void check_writable(const std::string& path, const IndexedMesh& mesh, const Mesh
         throw InputError(where + "mesh has " + std::to_string(n) +
                          " vertices, more than PLY's int indices can address");
     if (!options.colors.empty() && options.colors.size() != n)
-        throw ParameterError(where + "options.colors has " + std::to_string(options.colors.size()) + " entries for " +
+        throw ParameterError("colors", where + "options.colors has " + std::to_string(options.colors.size()) + " entries for " +
                              std::to_string(n) + " vertices");
     for (std::size_t i = 0; i < n; ++i) {
         const Vec3& p = mesh.positions[i];
@@ -314,7 +314,7 @@ MeshFormat mesh_format(const std::string& path) {
     if (ext == ".ply") return MeshFormat::ply;
     if (ext == ".obj") return MeshFormat::obj;
     if (ext == ".off") return MeshFormat::off;
-    throw IoError(path + ": unknown mesh format " + (ext.empty() ? std::string("(no extension)") : "'" + ext + "'") +
+    throw IoError(path, "unknown mesh format " + (ext.empty() ? std::string("(no extension)") : "'" + ext + "'") +
                   "; expected .ply, .obj or .off");
 }
 
@@ -343,7 +343,7 @@ IndexedMesh read_mesh(const std::string& path) {
     for (std::size_t i = 0; i < g.positions.size(); ++i) {
         const Vec3& p = g.positions[i];
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-            throw IoError(path + ": vertex " + std::to_string(i) + " has a non-finite coordinate");
+            throw IoError(path, "vertex " + std::to_string(i) + " has a non-finite coordinate");
     }
     IndexedMesh mesh;
     mesh.triangles = io_detail::fan_triangles(g);

@@ -24,7 +24,7 @@ std::uint32_t pick(bool c, std::uint32_t a, std::uint32_t b) {
 
 ActivityIndex::ActivityIndex(double alpha) : alpha_(alpha), inv_alpha_(1.0 / alpha), bucket_heads_(kBuckets, kNone) {
     if (!(alpha >= kMinAlpha && alpha <= 1.0))
-        throw ParameterError("ActivityIndex: alpha must be in [1e-100, 1], got " + std::to_string(alpha));
+        throw ParameterError("alpha", "ActivityIndex: alpha must be in [1e-100, 1], got " + std::to_string(alpha));
 }
 
 void ActivityIndex::reserve(std::size_t n) {
@@ -38,7 +38,7 @@ void ActivityIndex::shrink_ids(std::size_t n) {
 
 double ActivityIndex::checked_counter(double tau, const char* what) {
     if (!(tau >= 0.0 && tau <= kMaxCounter))
-        throw ParameterError(std::string("ActivityIndex::") + what + ": counter must be in [0, 1e150], got " +
+        throw ParameterError("counter", std::string("ActivityIndex::") + what + ": counter must be in [0, 1e150], got " +
                              std::to_string(tau));
     return tau;
 }

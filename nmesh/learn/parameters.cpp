@@ -16,12 +16,12 @@ Topology parse_topology(const char* name) {
     if (s == "sphere") return Topology::sphere;
     if (s == "closed") return Topology::closed;
     if (s == "open") return Topology::open;
-    throw ParameterError("invalid parameter topology: must be sphere, closed or open, got '" + s + "'");
+    throw ParameterError("topology", "invalid parameter topology: must be sphere, closed or open, got '" + s + "'");
 }
 
 void Parameters::validate() const {
     auto bad = [](const std::string& name, const std::string& why) {
-        throw ParameterError("invalid parameter " + name + ": " + why);
+        throw ParameterError(name, "invalid parameter " + name + ": " + why);
     };
     if (target_vertices < 4)
         bad("target_vertices", "must be at least 4 (a tetrahedron), got " + std::to_string(target_vertices));

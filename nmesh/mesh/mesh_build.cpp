@@ -135,7 +135,7 @@ Mesh Mesh::from_indexed(const IndexedMesh& in, bool allow_boundary) {
 
 void Mesh::reserve(std::uint32_t n) {
     if (n > kMaxVertices)
-        throw ParameterError("mesh: reserve: n = " + std::to_string(n) + " vertices; a mesh holds at most " +
+        throw ParameterError("n", "mesh: reserve: n = " + std::to_string(n) + " vertices; a mesh holds at most " +
                              std::to_string(kMaxVertices) + " (2^31 half-edges)");
     vpos_.reserve(n);
     vhe_.reserve(n);
@@ -149,7 +149,7 @@ void Mesh::reserve(std::uint32_t n) {
 
 void Mesh::drop_faces() {
     if (n_boundary_ != 0)
-        throw ParameterError("mesh: drop_faces: the mesh has boundaries, which the face index tells apart");
+        throw ParameterError("mesh", "mesh: drop_faces: the mesh has boundaries, which the face index tells apart");
     std::vector<std::uint32_t>().swap(he_face_);  // the memory itself goes, not just the size
     std::vector<std::uint32_t>().swap(fhe_);
     ffree_ = kInvalidIndex;

@@ -186,7 +186,7 @@ std::vector<float> vertex_distances_to_cloud(PointSpan points, const IndexedMesh
 
 QualityReport evaluate(PointSpan points, const IndexedMesh& mesh, const EvalOptions& options) {
     check_inputs(points, mesh);
-    if (options.surface_samples == 0) throw ParameterError("metrics: surface_samples must be at least 1");
+    if (options.surface_samples == 0) throw ParameterError("surface_samples", "metrics: surface_samples must be at least 1");
     QualityReport r;
     r.vertices = mesh.positions.size();
     r.faces = mesh.triangles.size();

@@ -371,11 +371,11 @@ std::vector<std::uint8_t> zlib_compress(const std::vector<std::uint8_t>& data) {
 
 std::vector<std::uint8_t> encode_png(int width, int height, const std::vector<std::uint8_t>& rgb) {
     if (width < 1 || height < 1)
-        throw ParameterError("png: the image size must be at least 1x1, got " + std::to_string(width) + "x" +
+        throw ParameterError(width < 1 ? "width" : "height", "png: the image size must be at least 1x1, got " + std::to_string(width) + "x" +
                              std::to_string(height));
     const std::uint64_t expected = 3ull * std::uint64_t(width) * std::uint64_t(height);
     if (rgb.size() != expected)
-        throw ParameterError("png: a " + std::to_string(width) + "x" + std::to_string(height) + " RGB image needs " +
+        throw ParameterError("rgb", "png: a " + std::to_string(width) + "x" + std::to_string(height) + " RGB image needs " +
                              std::to_string(expected) + " bytes, got " + std::to_string(rgb.size()));
 
     std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};

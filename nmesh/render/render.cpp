@@ -45,27 +45,32 @@ constexpr double kBackDepthShift = 1.0 / 16384;
 
 void check_options(const IndexedMesh& mesh, const RenderOptions& o) {
     if (o.width < 1 || o.width > kMaxSide || o.height < 1 || o.height > kMaxSide)
-        throw ParameterError("render: width and height must be in [1, " + std::to_string(kMaxSide) + "], got " +
+        throw ParameterError(o.width < 1 || o.width > kMaxSide ? "width" : "height",
+                             "render: width and height must be in [1, " + std::to_string(kMaxSide) + "], got " +
                              std::to_string(o.width) + "x" + std::to_string(o.height));
     if (o.supersample < 1 || o.supersample > kMaxSupersample)
-        throw ParameterError("render: supersample must be in [1, " + std::to_string(kMaxSupersample) + "], got " +
+        throw ParameterError("supersample", "render: supersample must be in [1, " + std::to_string(kMaxSupersample) + "], got " +
                              std::to_string(o.supersample));
     if (!std::isfinite(o.view.azimuth_deg) || !std::isfinite(o.view.elevation_deg) ||
         std::fabs(o.view.elevation_deg) > 90.0)
-        throw ParameterError("render: the azimuth must be finite and the elevation in [-90, 90] degrees");
+        throw ParameterError(std::isfinite(o.view.azimuth_deg) ? "view.elevation_deg" : "view.azimuth_deg",
+                             "render: the azimuth must be finite and the elevation in [-90, 90] degrees");
     if (o.vertex_values) {
         const std::vector<float>& values = *o.vertex_values;
         if (values.size() != mesh.positions.size())
-            throw ParameterError("render: vertex_values has " + std::to_string(values.size()) + " values for " +
+            throw ParameterError("vertex_values", "render: vertex_values has " + std::to_string(values.size()) + " values for " +
                                  std::to_string(mesh.positions.size()) + " vertices");
         for (std::size_t i = 0; i < values.size(); ++i)
             if (!std::isfinite(values[i]))
-                throw ParameterError("render: vertex_values[" + std::to_string(i) + "] is not finite");
+                throw ParameterError("vertex_values", "render: vertex_values[" + std::to_string(i) + "] is not finite");
     }
     const auto finite_or_empty = [](const std::optional<float>& v) { return !v || std::isfinite(*v); };
     if (!finite_or_empty(o.value_min) || !finite_or_empty(o.value_max) ||
         (o.value_min && o.value_max && *o.value_min > *o.value_max))
-        throw ParameterError("render: value_min and value_max must be finite, with value_min <= value_max");
+        throw ParameterError(finite_or_empty(o.value_min) && finite_or_empty(o.value_max) ? "value_min"
+                             : finite_or_empty(o.value_min)                             ? "value_max"
+                                                                                        : "value_min",
+                             "render: value_min and value_max must be finite, with value_min <= value_max");
 }
 
 // Marks the vertices that triangles use; checks indices and coordinates.

@@ -66,11 +66,11 @@ struct VertexGrid::Query {
 // --- construction and sizing ---------------------------------------------------------------
 
 VertexGrid::VertexGrid(const BoundingBox& domain) {
-    if (domain.empty()) throw ParameterError("VertexGrid: the domain box is empty");
+    if (domain.empty()) throw ParameterError("domain", "VertexGrid: the domain box is empty");
     domain_extent_ = 0.0;
     for (int a = 0; a < 3; ++a) {
         if (!std::isfinite(domain.min[a]) || !std::isfinite(domain.max[a]))
-            throw ParameterError("VertexGrid: the domain box has a non-finite bound");
+            throw ParameterError("domain", "VertexGrid: the domain box has a non-finite bound");
         origin_[a] = 0.5 * (double(domain.min[a]) + double(domain.max[a]));
         domain_extent_ = std::max(domain_extent_, double(domain.max[a]) - double(domain.min[a]));
     }

@@ -9,9 +9,10 @@
 
 The functions take any array-like of shape (N, 3) with real numbers; a C-contiguous float32
 NumPy array is read in place (no copy), anything else is converted once. Errors of the library
-are Python's: a bad parameter raises ValueError naming it, a file that cannot be read or written
-OSError (the message starts with the path), points that cannot be reconstructed (fewer than 4
-distinct, all on one line, a NaN or infinite coordinate) nmesh.InputError, a ValueError.
+are Python's: a bad parameter raises ValueError naming it (its name also as e.parameter, as for
+an argument of the wrong type, a TypeError), a file that cannot be read or written OSError (the
+message starts with the path, which is e.path), points that cannot be reconstructed (fewer than
+4 distinct, all on one line, a NaN or infinite coordinate) nmesh.InputError, a ValueError.
 """
 
 from __future__ import annotations
@@ -92,10 +93,17 @@ class Reconstruction:
         )
 
 
+def _named(error: Exception, parameter: str) -> Exception:
+    """`error` with the name of the argument it is about as its `parameter` attribute, as the
+    library's ValueErrors have it."""
+    setattr(error, "parameter", parameter)
+    return error
+
+
 def _path(path: PathArg) -> bytes:
     """The path as the bytes the operating system sees (any str, bytes or os.PathLike)."""
     if not isinstance(path, (str, bytes, os.PathLike)):
-        raise TypeError(f"path must be str, bytes or os.PathLike, not {type(path).__name__}")
+        raise _named(TypeError(f"path must be str, bytes or os.PathLike, not {type(path).__name__}"), "path")
     return os.fsencode(path)
 
 
@@ -103,11 +111,12 @@ def _rows_of_three(array: npt.ArrayLike, name: str) -> npt.NDArray[Any]:
     """`array` as an ndarray of real numbers of shape (N, 3), not yet converted; the checks."""
     a = np.asarray(array)  # no copy for an ndarray (a subclass gives a view of the same memory)
     if a.dtype.kind == "c":
-        raise TypeError(f"{name} must hold real numbers, not complex ({a.dtype})")
+        raise _named(TypeError(f"{name} must hold real numbers, not complex ({a.dtype})"), name)
     if a.dtype.kind not in "fiu":  # bool, object, strings, bytes, datetimes, structured arrays...
-        raise TypeError(f"{name} must hold real numbers (an integer or floating-point array), not {a.dtype}")
+        message = f"{name} must hold real numbers (an integer or floating-point array), not {a.dtype}"
+        raise _named(TypeError(message), name)
     if a.ndim != 2 or a.shape[1] != 3:
-        raise ValueError(f"{name} must be an array of shape (N, 3), got shape {a.shape}")
+        raise _named(ValueError(f"{name} must be an array of shape (N, 3), got shape {a.shape}"), name)
     return a
 
 
@@ -126,14 +135,14 @@ def _as_faces(faces: npt.ArrayLike, vertex_count: int) -> npt.NDArray[np.uint32]
     that no int64 index wraps around to a valid one on the way to uint32."""
     f = np.asarray(faces)
     if f.dtype.kind not in "iu":
-        raise TypeError(f"faces must be an integer array, not {f.dtype}")
+        raise _named(TypeError(f"faces must be an integer array, not {f.dtype}"), "faces")
     if f.ndim != 2 or f.shape[1] != 3:
-        raise ValueError(f"faces must be an array of shape (F, 3), got shape {f.shape}")
+        raise _named(ValueError(f"faces must be an array of shape (F, 3), got shape {f.shape}"), "faces")
     if f.size:
         low, high = int(f.min()), int(f.max())
         if low < 0 or high >= vertex_count:
             bad = low if low < 0 else high
-            raise ValueError(f"faces: index {bad} is out of range for {vertex_count} vertices")
+            raise _named(ValueError(f"faces: index {bad} is out of range for {vertex_count} vertices"), "faces")
     return np.require(f, dtype=np.uint32, requirements=("C", "A"))
 
 
@@ -141,27 +150,27 @@ def _count(name: str, value: Any, maximum: int = _UINT32_MAX) -> int:
     """An integer keyword in [0, maximum] (the library's unsigned fields); its finer range is
     checked by the library (ValueError naming the parameter)."""
     if isinstance(value, (bool, np.bool_)):
-        raise TypeError(f"{name} must be an integer, not bool")
+        raise _named(TypeError(f"{name} must be an integer, not bool"), name)
     try:
         n = operator.index(value)  # int, NumPy integers; not floats or strings
     except TypeError:
-        raise TypeError(f"{name} must be an integer, not {type(value).__name__}") from None
+        raise _named(TypeError(f"{name} must be an integer, not {type(value).__name__}"), name) from None
     if not 0 <= n <= maximum:
-        raise ValueError(f"invalid parameter {name}: must be in [0, {maximum}], got {n}")
+        raise _named(ValueError(f"invalid parameter {name}: must be in [0, {maximum}], got {n}"), name)
     return n
 
 
 def _real(name: str, value: Any) -> float:
     """A real-valued keyword (its range is checked by the library)."""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
-        raise TypeError(f"{name} must be a real number, not {type(value).__name__}")
+        raise _named(TypeError(f"{name} must be a real number, not {type(value).__name__}"), name)
     return float(value)
 
 
 def _flag(name: str, value: Any) -> bool:
     """A True/False keyword: only bools (a string such as "false" would be truthy)."""
     if not isinstance(value, (bool, np.bool_)):
-        raise TypeError(f"{name} must be True or False, not {type(value).__name__}")
+        raise _named(TypeError(f"{name} must be True or False, not {type(value).__name__}"), name)
     return bool(value)
 
 
@@ -232,13 +241,14 @@ def reconstruct(
     cancelled.
 
     Raises ValueError naming the parameter for a parameter out of range, TypeError or ValueError
-    for points of the wrong dtype or shape, nmesh.InputError (a ValueError) for points that
+    for points of the wrong dtype or shape (the argument's name, the keyword's for a parameter,
+    is the error's `parameter` attribute), nmesh.InputError (a ValueError) for points that
     cannot be reconstructed, including any NaN or infinite coordinate.
     """
     if not isinstance(topology, str):
-        raise TypeError(f"topology must be a str, not {type(topology).__name__}")
+        raise _named(TypeError(f"topology must be a str, not {type(topology).__name__}"), "topology")
     if progress is not None and not callable(progress):
-        raise TypeError(f"progress must be callable or None, not {type(progress).__name__}")
+        raise _named(TypeError(f"progress must be callable or None, not {type(progress).__name__}"), "progress")
     cloud = _as_points(points)
     vertices_out, faces_out, stats_json, cancelled = _nmesh.reconstruct(
         cloud,
@@ -270,7 +280,8 @@ def reconstruct(
 def read_points(path: PathArg) -> Float32Array:
     """The points of a file (.ply, .xyz/.txt/.pts/.csv, .obj, .off) as an (N, 3) float32 array,
     in file order; points with a NaN or infinite coordinate are dropped. Raises OSError (the
-    message starts with the path) for a file that is missing, unreadable or malformed."""
+    message starts with the path, which is its `path` attribute) for a file that is missing,
+    unreadable or malformed."""
     return _nmesh.read_points(_path(path))
 
 

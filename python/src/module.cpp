@@ -156,11 +156,12 @@ void validate(const nmesh::Parameters& params) {
     try {
         params.validate();
     } catch (const nmesh::ParameterError& e) {
+        if (e.parameter() != "target_vertices") throw;
         std::string message = e.what();
         const std::string field = "invalid parameter target_vertices";
         if (message.compare(0, field.size(), field) == 0)
             message.replace(0, field.size(), "invalid parameter vertices");
-        throw nmesh::ParameterError(message);
+        throw nmesh::ParameterError("vertices", message);
     }
 }
 
@@ -209,6 +210,15 @@ py::tuple reconstruct(const py::array& points, std::uint32_t target_vertices, do
     const bool cancelled = result.cancelled;
     auto [vertices, faces] = mesh_arrays(std::move(result.mesh));
     return py::make_tuple(std::move(vertices), std::move(faces), py::str(json.str()), cancelled);
+}
+
+// Raises `type`(message) with the attribute `name` set to `value` (both str in the file system's
+// encoding, as a path is): the structured part of a library error, e.path or e.parameter.
+void raise_with(PyObject* type, const char* message, const char* name, const std::string& value) {
+    const py::str text = fs_str(message), attribute = fs_str(value.c_str());
+    const py::object error = py::reinterpret_steal<py::object>(PyObject_CallFunctionObjArgs(type, text.ptr(), nullptr));
+    if (!error || PyObject_SetAttrString(error.ptr(), name, attribute.ptr()) != 0) return;  // that error is raised
+    PyErr_SetObject(type, error.ptr());
 }
 
 py::array read_points(const std::string& path) {
@@ -264,18 +274,19 @@ PYBIND11_MODULE(_nmesh, m) {
     if (!g_input_error) throw py::error_already_set();
     m.add_object("InputError", py::handle(g_input_error).inc_ref());
 
-    // The library's exceptions as Python's: a bad parameter is a ValueError, a file that cannot
-    // be read or written an OSError (the message starts with the path), an unusable cloud
-    // nmesh.InputError. Anything else falls through to pybind11's own translations.
+    // The library's exceptions as Python's: a bad parameter is a ValueError with the parameter's
+    // name as e.parameter, a file that cannot be read or written an OSError (the message starts
+    // with the path) with the path as e.path, an unusable cloud nmesh.InputError. Anything else
+    // falls through to pybind11's own translations.
     py::register_exception_translator([](std::exception_ptr thrown) {
         try {
             if (thrown) std::rethrow_exception(thrown);
         } catch (const nmesh::InputError& e) {
             PyErr_SetObject(g_input_error, fs_str(e.what()).ptr());
         } catch (const nmesh::ParameterError& e) {
-            PyErr_SetObject(PyExc_ValueError, fs_str(e.what()).ptr());
+            raise_with(PyExc_ValueError, e.what(), "parameter", e.parameter());
         } catch (const nmesh::IoError& e) {
-            PyErr_SetObject(PyExc_OSError, fs_str(e.what()).ptr());
+            raise_with(PyExc_OSError, e.what(), "path", e.path());
         } catch (const nmesh::Error& e) {
             PyErr_SetObject(PyExc_RuntimeError, fs_str(e.what()).ptr());
         }

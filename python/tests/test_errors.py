@@ -32,6 +32,7 @@ def test_a_bad_parameter_is_a_valueerror_naming_it(sphere: np.ndarray, options: 
     with pytest.raises(ValueError, match=f"invalid parameter {name}\\b") as error:
         nmesh.reconstruct(sphere, **options)
     assert not isinstance(error.value, nmesh.InputError)
+    assert error.value.parameter == name  # the keyword, whether the package or the library refused it
     assert "target_vertices" not in str(error.value)  # the Python keyword, not the C++ field
 
 
@@ -49,8 +50,9 @@ def test_a_bad_parameter_is_a_valueerror_naming_it(sphere: np.ndarray, options: 
     ],
 )
 def test_a_parameter_of_the_wrong_type_is_a_typeerror_naming_it(sphere: np.ndarray, options: dict, name: str) -> None:
-    with pytest.raises(TypeError, match=name):
+    with pytest.raises(TypeError, match=name) as error:
         nmesh.reconstruct(sphere, **options)
+    assert error.value.parameter == name
 
 
 def test_numpy_scalars_are_accepted(sphere: np.ndarray) -> None:

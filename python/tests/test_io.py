@@ -69,18 +69,22 @@ def test_missing_and_malformed_files_raise_oserror_with_the_path(tmp_path: Path)
         with pytest.raises(OSError) as error:
             read(missing)
         assert str(missing) in str(error.value)
+        assert error.value.path == str(missing)  # the path alone, as a str
     bad = tmp_path / "bad.xyz"
     bad.write_text("1 2 3\n4 five 6\n")
-    with pytest.raises(OSError, match="bad.xyz.*line 2"):
-        nmesh.read_points(bad)
+    with pytest.raises(OSError, match="bad.xyz.*line 2") as error:
+        nmesh.read_points(os.fsencode(bad))  # a bytes path comes back as os.fsdecode makes it
+    assert error.value.path == str(bad)
 
 
 def test_write_mesh_refusals(tmp_path: Path, bunny_mesh: nmesh.Reconstruction) -> None:
     v, f = bunny_mesh.vertices, bunny_mesh.faces
-    with pytest.raises(OSError, match="mesh.stl"):
+    with pytest.raises(OSError, match="mesh.stl") as error:
         nmesh.write_mesh(tmp_path / "mesh.stl", v, f)  # no such writer
-    with pytest.raises(OSError, match="no_such_dir"):
+    assert error.value.path == str(tmp_path / "mesh.stl")
+    with pytest.raises(OSError, match="no_such_dir") as error:
         nmesh.write_mesh(tmp_path / "no_such_dir" / "m.ply", v, f)
+    assert error.value.path == str(tmp_path / "no_such_dir" / "m.ply")
     out = tmp_path / "m.ply"
     with pytest.raises(ValueError, match="index 500 is out of range"):
         nmesh.write_mesh(out, v, np.where(f == 0, 500, f))
@@ -88,8 +92,9 @@ def test_write_mesh_refusals(tmp_path: Path, bunny_mesh: nmesh.Reconstruction) -
         nmesh.write_mesh(out, v, np.where(f == 0, -1, f))
     with pytest.raises(ValueError, match="index 4294967296"):  # would wrap to 0 as uint32
         nmesh.write_mesh(out, v, np.where(f == 0, 2**32, f.astype(np.int64)))
-    with pytest.raises(TypeError, match="faces must be an integer array"):
+    with pytest.raises(TypeError, match="faces must be an integer array") as error:
         nmesh.write_mesh(out, v, f.astype(np.float64))
+    assert error.value.parameter == "faces"
     with pytest.raises(ValueError, match=r"faces must be an array of shape \(F, 3\)"):
         nmesh.write_mesh(out, v, f[:, :2])
     with pytest.raises(ValueError, match=r"vertices must be an array of shape \(N, 3\)"):

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import inspect
 import json
+import re
 from pathlib import Path
 
 import numpy as np
@@ -130,6 +132,18 @@ def test_solid_start_keyword(sphere: np.ndarray) -> None:
     assert r.stats["parameters"]["solid_start"] is False and r.stats["start_vertices"] == 4
     with pytest.raises(TypeError, match="solid_start"):
         nmesh.reconstruct(sphere, 300, solid_start="no")
+
+
+def test_every_parameter_is_a_keyword() -> None:
+    """Each field of nmesh::Parameters (nmesh/parameters.h in the source tree) is a keyword of
+    reconstruct under its own name (target_vertices: vertices): a field added to the library
+    without its keyword fails here."""
+    header = (Path(__file__).resolve().parents[2] / "nmesh" / "parameters.h").read_text()
+    body = header[header.index("struct Parameters {"):header.index("void validate() const;")]
+    fields = set(re.findall(r"^\s+[\w:]+ (\w+) = ", body, re.M))
+    assert "fold_guard" in fields and "solid_start" in fields and len(fields) == 16
+    keywords = set(inspect.signature(nmesh.reconstruct).parameters) - {"points", "progress", "metrics"}
+    assert {"vertices" if f == "target_vertices" else f for f in fields} == keywords
 
 
 def test_fold_guard_keyword(sphere: np.ndarray) -> None:
