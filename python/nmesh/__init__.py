@@ -1,4 +1,4 @@
-"""nmesh: a closed triangle mesh from a point cloud (Neural Meshes ES), from Python.
+"""nmesh: a triangle mesh from a point cloud (Neural Meshes ES), from Python.
 
     import nmesh
 
@@ -72,7 +72,8 @@ class Reconstruction:
     """The result of reconstruct().
 
     vertices: (V, 3) float32, in the coordinates of the input points.
-    faces: (F, 3) int32, counter-clockwise seen from outside; a closed genus-0 2-manifold.
+    faces: (F, 3) int32, counter-clockwise seen from outside; a 2-manifold of the cloud's genus,
+        closed unless topology="open".
     stats: the record `nmesh reconstruct --stats` writes, as a dict (its "input" is "<array>"):
         seed, parameters, vertices, faces, the counts and timings of the learning ("seconds" is
         the learning time, "seconds_finish" the finishing stage's), cancelled, and "metrics",
