@@ -38,11 +38,60 @@ void distance_line(const double* f, int n, double* d, int* v, double* z) {
     }
 }
 
+// Where each cell stops being outside: the largest v such that a 6-connected path of cells whose
+// distances are all at least v joins the cell to the grid's border (the widest path, found by a
+// flood from the border in order of decreasing v, one bucket per distance value). At an offset
+// of r cells the outside is the cells whose level exceeds r^2 (a path of cells beyond the shell
+// reaches them), and the shell is the cells whose distance is at most r^2: one flood serves
+// every offset. O(cells).
+std::vector<std::uint8_t> outside_levels(const std::array<std::uint32_t, 3>& dims, const std::vector<std::uint8_t>& dist) {
+    const std::uint32_t nx = dims[0], ny = dims[1], nz = dims[2];
+    std::vector<std::uint8_t> level(dist.size(), 0);
+    std::vector<char> done(dist.size(), 0);
+    std::array<std::vector<std::uint32_t>, 256> bucket;
+    // The border layer is outside at every level (the padding keeps the shell off it); the flood
+    // starts from the cells next to it, so that every cell it pops has its six neighbours in the
+    // grid.
+    for (std::uint32_t z = 0; z < nz; ++z)
+        for (std::uint32_t y = 0; y < ny; ++y)
+            for (std::uint32_t x = 0; x < nx; ++x) {
+                const std::uint32_t i = (z * ny + y) * nx + x;
+                if (x == 0 || y == 0 || z == 0 || x + 1 == nx || y + 1 == ny || z + 1 == nz) {
+                    level[i] = dist[i];
+                    done[i] = 1;
+                } else if (x == 1 || y == 1 || z == 1 || x + 2 == nx || y + 2 == ny || z + 2 == nz) {
+                    level[i] = dist[i];
+                    bucket[dist[i]].push_back(i);
+                }
+            }
+    const std::uint32_t step[6] = {1, std::uint32_t(-1), nx, std::uint32_t(-std::int64_t(nx)), nx * ny,
+                                   std::uint32_t(-std::int64_t(nx) * ny)};
+    for (int v = 255; v >= 0; --v) {
+        std::vector<std::uint32_t>& here = bucket[std::size_t(v)];
+        while (!here.empty()) {
+            const std::uint32_t i = here.back();
+            here.pop_back();
+            if (done[i] || level[i] != v) continue;  // finished, or pushed again at a higher level
+            done[i] = 1;
+            for (const std::uint32_t s : step) {
+                const std::uint32_t j = i + s;
+                const std::uint8_t w = std::min(level[i], dist[j]);
+                if (done[j] || w <= level[j]) continue;
+                level[j] = w;
+                bucket[w].push_back(j);
+            }
+        }
+        here.shrink_to_fit();
+    }
+    return level;
+}
+
 }  // namespace solid_detail
 
 namespace {
 
 using solid_detail::distance_line;
+using solid_detail::outside_levels;
 
 // The median distance from a point to its nearest other point, over up to 4096 of them (every
 // k-th), found in a hash of cells sorted by key. 0 when no sampled point has a distinct neighbour
@@ -119,7 +168,12 @@ std::vector<std::uint8_t> distances(const Grid& g, const std::vector<Vec3>& poin
         for (std::uint32_t i = 0; i < g.dims[a]; ++i)
             for (std::uint32_t j = 0; j < g.dims[b]; ++j) {
                 const std::uint64_t base = i * stride[a] + j * stride[b];
-                for (int q = 0; q < n; ++q) line[q] = dist[base + q * stride[axis]];
+                bool empty = true;  // a line of kFar stays kFar: most of the grid is far from the points
+                for (int q = 0; q < n; ++q) {
+                    line[q] = dist[base + q * stride[axis]];
+                    empty = empty && line[q] == kFar;
+                }
+                if (empty) continue;
                 distance_line(line.data(), n, out.data(), v.data(), z.data());
                 for (int q = 0; q < n; ++q) dist[base + q * stride[axis]] = std::uint8_t(std::min(out[q], double(kFar)));
             }
@@ -129,40 +183,22 @@ std::vector<std::uint8_t> distances(const Grid& g, const std::vector<Vec3>& poin
 
 enum : std::uint8_t { kFree = 0, kShell = 1, kOutside = 2 };
 
-// The shell (cells within `radius` cells of a point) and the outside (the other cells, flooded
-// 6-connected from the grid's border); the rest stays kFree, the solid's inside. Returns the
-// counts of shell and inside cells.
-std::pair<std::uint64_t, std::uint64_t> classify(const Grid& g, const std::vector<std::uint8_t>& dist, float radius,
+// The shell (cells within `radius` cells of a point), the outside (the other cells joined to the
+// grid's border by a path outside the shell) and the rest, kFree, the solid's inside, from the
+// cells' distances and outside levels. Returns the counts of shell and inside cells.
+std::pair<std::uint64_t, std::uint64_t> classify(const std::vector<std::uint8_t>& dist,
+                                                 const std::vector<std::uint8_t>& level, float radius,
                                                  std::vector<std::uint8_t>& state) {
     const float r2 = radius * radius;
-    state.resize(g.size());
-    for (std::size_t i = 0; i < state.size(); ++i) state[i] = float(dist[i]) <= r2 ? kShell : kFree;
-    // The grid's border layer is outside (the padding keeps the shell off it); the flood starts
-    // from the free cells next to it, and every cell it pops is inside the border, so its six
-    // neighbours are in the grid.
-    std::vector<std::uint32_t> stack;
-    const std::uint32_t nx = g.dims[0], ny = g.dims[1], nz = g.dims[2];
-    for (std::uint32_t z = 0; z < nz; ++z)
-        for (std::uint32_t y = 0; y < ny; ++y)
-            for (std::uint32_t x = 0; x < nx; ++x) {
-                const bool border = x == 0 || y == 0 || z == 0 || x + 1 == nx || y + 1 == ny || z + 1 == nz;
-                const bool next = !border && (x == 1 || y == 1 || z == 1 || x + 2 == nx || y + 2 == ny || z + 2 == nz);
-                const std::uint32_t i = g.index(x, y, z);
-                if (border) state[i] = kOutside;
-                if (next && state[i] == kFree) state[i] = kOutside, stack.push_back(i);
-            }
-    const std::uint32_t step[6] = {1, std::uint32_t(-1), nx, std::uint32_t(-std::int64_t(nx)), nx * ny,
-                                   std::uint32_t(-std::int64_t(nx) * ny)};
-    while (!stack.empty()) {
-        const std::uint32_t i = stack.back();
-        stack.pop_back();
-        for (const std::uint32_t s : step) {
-            const std::uint32_t j = i + s;
-            if (state[j] == kFree) state[j] = kOutside, stack.push_back(j);
-        }
-    }
+    state.resize(dist.size());
     std::uint64_t shell = 0, inside = 0;
-    for (const std::uint8_t v : state) shell += v == kShell, inside += v == kFree;
+    for (std::size_t i = 0; i < state.size(); ++i) {
+        const bool in_shell = float(dist[i]) <= r2;
+        const bool outside = !in_shell && float(level[i]) > r2;
+        state[i] = in_shell ? kShell : outside ? kOutside : kFree;
+        shell += in_shell;
+        inside += !in_shell && !outside;
+    }
     return {shell, inside};
 }
 
@@ -180,26 +216,40 @@ constexpr int kKuhnEdges[7][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {1
 // outside does not reach is solid).
 std::pair<std::uint32_t, int> surface_topology(const Grid& g, const std::vector<std::uint8_t>& state) {
     auto solid = [&](std::uint32_t i) { return state[i] != kOutside; };
+    // The cubes with a solid corner lie within the solid cells' box grown by one cell below. Each
+    // Kuhn edge belongs to the cube at its lower corner (those of the grid's last layers join
+    // outside cells: the padding keeps the solid off the border).
+    std::uint32_t lo[3] = {g.dims[0], g.dims[1], g.dims[2]}, hi[3] = {0, 0, 0};
+    for (std::uint32_t i = 0; i < g.size(); ++i) {
+        if (!solid(i)) continue;
+        const std::uint32_t c[3] = {i % g.dims[0], (i / g.dims[0]) % g.dims[1], i / (g.dims[0] * g.dims[1])};
+        for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+    }
+    if (lo[0] > hi[0]) return {0, 0};
     std::int64_t vertices = 0, faces = 0;
-    for (std::uint32_t z = 0; z < g.dims[2]; ++z)
-        for (std::uint32_t y = 0; y < g.dims[1]; ++y)
-            for (std::uint32_t x = 0; x < g.dims[0]; ++x) {
-                const bool here = solid(g.index(x, y, z));
-                for (const auto& e : kKuhnEdges) {
-                    const std::uint32_t a = x + std::uint32_t(e[0]), b = y + std::uint32_t(e[1]), c = z + std::uint32_t(e[2]);
-                    if (a < g.dims[0] && b < g.dims[1] && c < g.dims[2] && solid(g.index(a, b, c)) != here) ++vertices;
-                }
-                if (x + 1 == g.dims[0] || y + 1 == g.dims[1] || z + 1 == g.dims[2]) continue;
+    for (std::uint32_t z = std::max(lo[2], 1u) - 1; z <= std::min(hi[2], g.dims[2] - 2); ++z)
+        for (std::uint32_t y = std::max(lo[1], 1u) - 1; y <= std::min(hi[1], g.dims[1] - 2); ++y)
+            for (std::uint32_t x = std::max(lo[0], 1u) - 1; x <= std::min(hi[0], g.dims[0] - 2); ++x) {
                 bool in[8];
                 int count = 0;
                 for (int k = 0; k < 8; ++k) count += in[k] = solid(g.index(x + (k & 1), y + (k >> 1 & 1), z + (k >> 2 & 1)));
                 if (count == 0 || count == 8) continue;
+                // The seven Kuhn edges from corner 0: to corners 1, 2, 4 (the axes), 3, 5, 6 (the
+                // face diagonals) and 7 (the cube's).
+                for (const int k : {1, 2, 4, 3, 5, 6, 7}) vertices += in[0] != in[k];
                 for (const auto& t : kTets) {
                     const int n = in[t[0]] + in[t[1]] + in[t[2]] + in[t[3]];
                     faces += n == 2 ? 2 : (n == 1 || n == 3) ? 1 : 0;
                 }
             }
-    // Components of the solid along the Kuhn edges, both ways.
+    // Components of the solid along the Kuhn edges, both ways (a solid cell's neighbours are all
+    // in the grid: the padding keeps the solid two cells off the border).
+    std::int64_t step[14];
+    for (int e = 0; e < 7; ++e) {
+        step[2 * e] = std::int64_t(g.index(std::uint32_t(kKuhnEdges[e][0]), std::uint32_t(kKuhnEdges[e][1]),
+                                           std::uint32_t(kKuhnEdges[e][2])));
+        step[2 * e + 1] = -step[2 * e];
+    }
     std::vector<char> seen(g.size(), 0);
     std::vector<std::uint32_t> stack;
     std::uint32_t components = 0;
@@ -211,14 +261,10 @@ std::pair<std::uint32_t, int> surface_topology(const Grid& g, const std::vector<
         while (!stack.empty()) {
             const std::uint32_t j = stack.back();
             stack.pop_back();
-            const std::int64_t c[3] = {j % g.dims[0], (j / g.dims[0]) % g.dims[1], j / (g.dims[0] * g.dims[1])};
-            for (const auto& e : kKuhnEdges)
-                for (const int s : {-1, 1}) {
-                    const std::int64_t a = c[0] + s * e[0], b = c[1] + s * e[1], d = c[2] + s * e[2];
-                    if (a < 0 || b < 0 || d < 0 || a >= g.dims[0] || b >= g.dims[1] || d >= g.dims[2]) continue;
-                    const std::uint32_t k = g.index(std::uint32_t(a), std::uint32_t(b), std::uint32_t(d));
-                    if (!seen[k] && solid(k)) seen[k] = 1, stack.push_back(k);
-                }
+            for (const std::int64_t s : step) {
+                const std::uint32_t k = std::uint32_t(std::int64_t(j) + s);
+                if (!seen[k] && solid(k)) seen[k] = 1, stack.push_back(k);
+            }
         }
     }
     const std::int64_t euler = vertices - faces / 2;  // V - E + F with E = 3F / 2
@@ -294,62 +340,140 @@ Grid grid_over(const BoundingBox& box, float h, float pad) {
     return g;
 }
 
-}  // namespace
-
-SolidSurface solid_surface(PointSpan points, const PointTransform& transform) {
-    SolidSurface out;
-    std::vector<Vec3> p(points.size());
-    BoundingBox box;
-    for (std::size_t i = 0; i < p.size(); ++i) box.extend(p[i] = transform(points[i]));
-    const float d = median_spacing(p, box);
-    if (!(d > 0.0f)) return out;
-    out.spacing = d;
+// The grid of the readings: cells kVoxel d across over `box` (transformed points), padded by the
+// largest offset and two cells, with larger cells when it would exceed kMaxVoxels.
+Grid base_grid(const BoundingBox& box, float d) {
     const float largest = kOffsets[std::size(kOffsets) - 1] * d;
     Grid g = grid_over(box, kVoxel * d, largest + 2.0f * kVoxel * d);
     while (g.size() > kMaxVoxels) g = grid_over(box, g.h * 1.25f, largest + 2.0f * g.h * 1.25f);
+    return g;
+}
+
+// The points through `transform`, their box and d.
+struct Transformed {
+    std::vector<Vec3> p;
+    BoundingBox box;
+    float d = 0.0f;
+};
+Transformed transformed(PointSpan points, const PointTransform& transform) {
+    Transformed t;
+    t.p.resize(points.size());
+    for (std::size_t i = 0; i < t.p.size(); ++i) t.box.extend(t.p[i] = transform(points[i]));
+    t.d = median_spacing(t.p, t.box);
+    return t;
+}
+
+}  // namespace
+
+namespace solid_detail {
+
+GridReading read_grid(PointSpan points, const PointTransform& transform, float offset, int shift) {
+    GridReading r;
+    const Transformed t = transformed(points, transform);
+    if (!(t.d > 0.0f)) return r;
+    Grid g = base_grid(t.box, t.d);
+    g.origin = g.origin + kGridShifts[shift] * g.h;
+    const std::vector<std::uint8_t> dist = distances(g, t.p);
     std::vector<std::uint8_t> state;
-    {
-        const std::vector<std::uint8_t> dist = distances(g, p);
-        for (const float offset : kOffsets) {
-            const auto [shell, inside] = classify(g, dist, offset * d / g.h, state);
+    const auto [shell, inside] = classify(dist, outside_levels(g.dims, dist), offset * t.d / g.h, state);
+    r.walled = double(inside) >= kMinInside * double(shell);
+    if (r.walled) std::tie(r.components, r.genus) = surface_topology(g, state);
+    return r;
+}
+
+}  // namespace solid_detail
+
+
+SolidSurface solid_surface(PointSpan points, const PointTransform& transform) {
+    SolidSurface out;
+    const Transformed t = transformed(points, transform);
+    const std::vector<Vec3>& p = t.p;
+    const BoundingBox& box = t.box;
+    const float d = t.d;
+    if (!(d > 0.0f)) return out;
+    out.spacing = d;
+    const float largest = kOffsets[std::size(kOffsets) - 1] * d;
+    const Grid g = base_grid(box, d);
+    // The grids, each shifted by a fraction of a cell: a tunnel between two cells' corners (the
+    // grid's own) comes and goes as the grid moves, a handle of the object does not.
+    constexpr int kGrids = int(std::size(kGridShifts));
+    std::array<Grid, kGrids> grids;
+    std::array<std::vector<std::uint8_t>, kGrids> dist, level;
+    for (int k = 0; k < kGrids; ++k) {
+        grids[k] = g;
+        grids[k].origin = g.origin + kGridShifts[k] * g.h;
+        dist[k] = distances(grids[k], p);
+        level[k] = outside_levels(grids[k].dims, dist[k]);
+    }
+    // The reading at each offset, smallest first: what the grids agree on (a majority of them
+    // walled round, one component, the same genus), until two offsets in a row agree on the same
+    // genus. A genus that holds over a range of offsets is the object's (persistence); one that
+    // holds at a single offset is the sampling's (the gaps closing) or the grid's.
+    std::vector<std::uint8_t> state;
+    int previous = -1;  // the genus agreed at the previous offset, -1 when none
+    float previous_offset = 0.0f;
+    for (const float offset : kOffsets) {
+        // A genus read beyond twice the offset that first walls round would be that of a solid
+        // closing gaps twice as wide as the sampling's own: not the object's.
+        if (out.walled && offset > 2.0f * out.offset) break;
+        int genera[kGrids];
+        int walled = 0;
+        for (int k = 0; k < kGrids; ++k) genera[k] = -1;
+        for (int k = 0; k < kGrids; ++k) {
+            // Two grids that agree are a majority already.
+            if (k == 2 && genera[0] >= 0 && genera[0] == genera[1]) break;
+            const auto [shell, inside] = classify(dist[k], level[k], offset * d / g.h, state);
             if (double(inside) < kMinInside * double(shell)) continue;
+            ++walled;
+            const auto [components, genus] = surface_topology(grids[k], state);
+            genera[k] = components == 1 ? genus : -2;  // -2: several components
+            if (!out.walled || components != 1) out.components = components;
+        }
+        if (walled > 0 && !out.walled) {
             out.walled = true;
             out.offset = offset;
+        }
+        int agreed = -1;
+        for (int k = 0; k < kGrids && agreed < 0; ++k) {
+            if (genera[k] < 0) continue;
+            int votes = 0;
+            for (int j = 0; j < kGrids; ++j) votes += genera[j] == genera[k];
+            if (2 * votes > kGrids) agreed = genera[k];
+        }
+        if (agreed >= 0 && agreed == previous) {
+            out.stable = true;
+            out.genus = agreed;
+            out.components = 1;
+            out.offset = previous_offset;
             break;
         }
-    }
-    if (!out.walled) return out;
-    std::tie(out.components, out.genus) = surface_topology(g, state);
-    if (out.components != 1 || out.genus < 0) return out;
-    // Handles that are the grid's and not the cloud's (a tunnel between two cells' corners)
-    // come and go as the grid moves: a grid shifted by a fraction of a cell must give the same
-    // components and genus, at the same offset or, where it leaks there, at the next one. A
-    // sphere has no handle to doubt.
-    out.stable = out.genus == 0;
-    const float* next = std::find(std::begin(kOffsets), std::end(kOffsets), out.offset) + 1;
-    for (const Vec3& shift : {Vec3{0.5f, 0.5f, 0.5f}, Vec3{0.25f, 0.5f, 0.75f}}) {
-        if (out.stable) break;
-        Grid moved = g;
-        moved.origin = g.origin + shift * g.h;
-        const std::vector<std::uint8_t> dist = distances(moved, p);
-        std::vector<std::uint8_t> moved_state;
-        for (const float offset : {out.offset, next != std::end(kOffsets) ? *next : out.offset}) {
-            const auto [shell, inside] = classify(moved, dist, offset * d / g.h, moved_state);
-            if (double(inside) < kMinInside * double(shell)) continue;
-            out.stable = surface_topology(moved, moved_state) == std::make_pair(out.components, out.genus);
-            break;
-        }
-        if (out.stable) break;
+        previous = agreed;
+        previous_offset = offset;
     }
     if (!out.stable) return out;
     if (out.genus == 0 && out.offset > kMaxShapeOffset) return out;  // no start: no surface to build
-    // The surface from cells twice as large when they give the same topology: a quarter of the
-    // triangles to simplify.
-    const Grid coarse = grid_over(box, 2.0f * g.h, largest + 4.0f * g.h);
-    std::vector<std::uint8_t> coarse_state;
-    classify(coarse, distances(coarse, p), out.offset * d / coarse.h, coarse_state);
-    const bool same = surface_topology(coarse, coarse_state) == std::make_pair(out.components, out.genus);
-    out.surface = same ? outer_surface(coarse, coarse_state) : outer_surface(g, state);
+    // The surface: from cells twice as large when those give the same topology at that offset or
+    // the next (a quarter of the triangles to simplify), else from the first grid that reads the
+    // agreed genus at that offset.
+    const float next = *(std::find(std::begin(kOffsets), std::end(kOffsets), out.offset) + 1);
+    for (int k = 0; k < kGrids && out.surface.triangles.empty(); ++k) {
+        Grid coarse = grid_over(box, 2.0f * g.h, largest + 4.0f * g.h);
+        coarse.origin = coarse.origin + kGridShifts[k] * g.h;
+        const std::vector<std::uint8_t> coarse_dist = distances(coarse, p);
+        const std::vector<std::uint8_t> coarse_level = outside_levels(coarse.dims, coarse_dist);
+        for (const float offset : {out.offset, next}) {
+            classify(coarse_dist, coarse_level, offset * d / coarse.h, state);
+            if (surface_topology(coarse, state) != std::make_pair(std::uint32_t(1), out.genus)) continue;
+            out.surface = outer_surface(coarse, state);
+            break;
+        }
+        if (!out.surface.triangles.empty() || k > 0) break;  // the shifted coarse grids: not worth it
+    }
+    for (int k = 0; k < kGrids && out.surface.triangles.empty(); ++k) {
+        classify(dist[k], level[k], out.offset * d / g.h, state);
+        if (surface_topology(grids[k], state) == std::make_pair(std::uint32_t(1), out.genus))
+            out.surface = outer_surface(grids[k], state);
+    }
     return out;
 }
 

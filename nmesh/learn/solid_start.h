@@ -19,19 +19,24 @@
 //     are kOffsets d, smallest first;
 //   - an offset leaks when the solid is no more than its shell (its inside, the cells of the
 //     solid outside the shell, fewer than kMinInside of the shell's): the outside came in through
-//     a hole of the scan (the bunny's base) or between samples. A larger offset is tried; when
-//     all leak, the solid is unknown and the learning starts from the tetrahedron;
-//   - the genus is counted on the grid; a genus above 0 counts only when a grid shifted by a
-//     fraction of a cell gives the same (a tunnel between two cells' corners does not move
-//     with the grid);
+//     a hole of the scan (the bunny's base) or between samples;
+//   - the genus is read where it persists: at each offset the grids shifted by kGridShifts agree
+//     when most of them wall a solid of one component round and count the same genus; the
+//     reading is the first genus agreed at two offsets in a row, at the smaller of the two. The
+//     gaps between random samples close over a narrow range of offsets, and while they close the
+//     genus jumps; a tunnel between two cells' corners (the grid's own) comes and goes as the
+//     grid moves; a handle of the object holds while the offset is smaller than the hole. When
+//     no genus persists, the solid is not read and the learning starts from the tetrahedron;
 //   - the start is the outer surface simplified to start_vertices(target) vertices (simplify);
 //   - the grid has at most kMaxVoxels cells (larger voxels for a cloud that would need more):
 //     one byte each for the distances, the states and the components' flood, 50 MB at most.
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "nmesh/indexed_mesh.h"
 #include "nmesh/mesh/mesh.h"
@@ -42,8 +47,12 @@ namespace nmesh {
 
 // Random samples leave spots up to about 4 d from every point (a smaller offset leaks); the
 // knot's strands cross 13.6 d apart (a larger offset than 4 d closes its crossings); the rocker
-// arm, sampled unevenly, walls round at 6 d and the bunny over its base holes at 8 d.
-inline constexpr float kOffsets[] = {3.0f, 4.0f, 6.0f, 8.0f, 12.0f};
+// arm, sampled unevenly, walls round at 6 d and the bunny over its base holes at 8 d. The steps
+// are those at which the distance transform's squared cell distances (sums of three squares)
+// change at cells kVoxel d across: 1.5, 1.75, 2, 2.25, 2.5, 3, 3.5, 4, 5 and 6 cells.
+inline constexpr float kOffsets[] = {3.0f, 3.5f, 4.0f, 4.5f, 5.0f, 6.0f, 7.0f, 8.0f, 10.0f, 12.0f};
+// The grids that vote on a genus: shifted by these fractions of a cell.
+inline constexpr Vec3 kGridShifts[] = {{0.0f, 0.0f, 0.0f}, {0.5f, 0.5f, 0.5f}, {0.25f, 0.5f, 0.75f}};
 // Cells 2 d across: a quarter of the cells of d, and the knot's crossings still 3 cells open at 4 d.
 inline constexpr float kVoxel = 2.0f;
 // A leak leaves at most 0.3% of the shell inside on the shared clouds; a thin part walled round
@@ -59,12 +68,11 @@ inline constexpr std::uint64_t kMaxVoxels = std::uint64_t(1) << 24;
 
 struct SolidSurface {
     bool walled = false;        // an offset that does not leak was found
-    float offset = 0.0f;        // that offset, in units of d
+    float offset = 0.0f;        // the first offset that walls round, or the one the genus is read at (stable)
     float spacing = 0.0f;       // d, in transformed units
     std::uint32_t components = 0;
     int genus = -1;             // of the outer surface (summed over its components)
-    // The genus can be trusted: it is 0, or a grid shifted by a fraction of a cell gives the same
-    // components and genus (at the same offset, or at the next where it leaks at that one).
+    // The genus can be trusted: the shifted grids agree on it at `offset` and the next offset.
     bool stable = false;
     // The outer surface (faces outward), when stable and, for genus 0, walled round at an offset
     // of at most kMaxShapeOffset (solid_start's condition for a start).
@@ -100,6 +108,21 @@ namespace solid_detail {
 // parabolas): d[q] = min over p of f[p] + (q - p)^2 for q in [0, n), n >= 1. `v` and `z` are
 // scratch of n and n + 1 elements. O(n).
 void distance_line(const double* f, int n, double* d, int* v, double* z);
+// For each cell of a grid of `dims` cells (x fastest) with distances `dist` (squared, in cells,
+// clamped at 255) to the nearest cell holding a point: the largest v such that a 6-connected path
+// of cells whose distances are all at least v joins the cell to the grid's border, the border
+// layer excluded from the paths' insides (its cells keep their own distance). At an offset of r
+// cells, the cells of level above r^2 are the outside: one flood (a bucket queue in order of
+// decreasing level) serves every offset. Precondition: every dimension at least 3. O(cells).
+std::vector<std::uint8_t> outside_levels(const std::array<std::uint32_t, 3>& dims, const std::vector<std::uint8_t>& dist);
+// One grid's reading at one offset (in units of d), on the grid solid_surface() builds, shifted
+// by kGridShifts[shift]: whether it walls round, and then its solid's components and genus.
+struct GridReading {
+    bool walled = false;
+    std::uint32_t components = 0;
+    int genus = -1;
+};
+GridReading read_grid(PointSpan points, const PointTransform& transform, float offset, int shift);
 }  // namespace solid_detail
 
 }  // namespace nmesh
