@@ -19,6 +19,7 @@ struct Statistics {
     std::uint64_t swaps_illegal = 0;      //   the worst edge could not be flipped
     std::uint64_t moves_shortened = 0;    // step 3 moves shortened: they would fold the winner's fan
     std::uint64_t folds_undone = 0;       // folded winners moved towards their ring's centroid instead
+    std::uint64_t side_skips = 0;         // samples not learnt: their winner faced away from their side
     // The learning's checkpoints against twists (topology closed and open, reconstruct()):
     // checks made, retries from the last checkpoint because the mesh had turned partly inside
     // out, and checkpoints passed with the region still there after every retry.

@@ -43,6 +43,46 @@ inline PointCloud torus_cloud(std::size_t n, float big = 1.0f, float small = 0.3
     return c;
 }
 
+// About n points uniformly distributed on a thin-walled ring round the z axis (a short tube of
+// inner radius 1, wall `thickness`, height 0.5, with its two annular ends) with a ball of radius
+// 0.2 on its outside, as a pipe with a boss: a genus-1 shape whose wall is thinner than the edges
+// of a mesh of a few thousand vertices, as a sheet-metal part's, and whose boss walls a solid
+// round (a wall alone is all shell at every offset: solid_start.h).
+inline PointCloud thin_ring_cloud(std::size_t n, float thickness = 0.01f, std::uint64_t seed = 9) {
+    Random rng(seed);
+    PointCloud c;
+    c.points.reserve(n);
+    const double two_pi = 6.283185307179586, height = 0.5, r0 = 1.0, r1 = 1.0 + thickness, ball = 0.2;
+    const Vec3 centre{float(r1 + 0.1), 0.0f, 0.25f};
+    const double inner = two_pi * r0 * height, outer = two_pi * r1 * height, end = 0.5 * two_pi * (r1 * r1 - r0 * r0);
+    const double sphere = 2.0 * two_pi * ball * ball, total = inner + outer + 2.0 * end + sphere;
+    const auto in_ball = [&](const Vec3& p) { return squared_distance(p, centre) < float(ball * ball); };
+    const auto in_wall = [&](const Vec3& p) {
+        const double r = std::sqrt(double(p.x) * p.x + double(p.y) * p.y);
+        return r > r0 && r < r1 && p.z > 0.0f && p.z < float(height);
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+        const double pick = rng.uniform() * total, u = two_pi * rng.uniform();
+        Vec3 p;
+        if (pick < inner + outer) {
+            const double r = pick < inner ? r0 : r1, z = height * rng.uniform();
+            p = {float(r * std::cos(u)), float(r * std::sin(u)), float(z)};
+        } else if (pick < inner + outer + 2.0 * end) {
+            // Uniform on the annulus: the radius from the area's inverse.
+            const double r = std::sqrt(r0 * r0 + rng.uniform() * (r1 * r1 - r0 * r0));
+            const double z = pick < inner + outer + end ? 0.0 : height;
+            p = {float(r * std::cos(u)), float(r * std::sin(u)), float(z)};
+        } else {
+            const double z = 2.0 * rng.uniform() - 1.0, s = std::sqrt(1.0 - z * z);
+            p = centre + Vec3{float(s * std::cos(u)), float(s * std::sin(u)), float(z)} * float(ball);
+            if (in_wall(p)) continue;
+        }
+        if (pick < inner + outer + 2.0 * end && in_ball(p)) continue;
+        c.points.push_back(p);
+    }
+    return c;
+}
+
 // A ball (radius 1) standing on four thin legs (radius 0.06, 1.6 long, with their end discs),
 // sampled at one density, about 14,000 points: thin parts like a horse's legs, where a coarse
 // mesh twists and folds.

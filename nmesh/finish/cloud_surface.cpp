@@ -9,10 +9,15 @@ namespace nmesh {
 
 using namespace finish_detail;
 
-CloudSurface::CloudSurface(const std::vector<Vec3>& points, const Mesh& mesh, const PointGrid* index)
+CloudSurface::CloudSurface(const std::vector<Vec3>& points, const Mesh& mesh, const PointGrid* index,
+                           const std::vector<Vec3>* sides)
     : points_(points),
       own_index_(index ? nullptr : std::make_unique<PointGrid>(points)),
       index_(index ? index : own_index_.get()) {
+    if (sides != nullptr && sides->size() == points.size()) {
+        point_normals_ = *sides;
+        return;
+    }
     const std::vector<Vertex> verts = alive_vertices(mesh);
     vertex_normals_.resize(verts.size());
     for (std::size_t i = 0; i < verts.size(); ++i) vertex_normals_[i] = mesh.vertex_normal(verts[i]);

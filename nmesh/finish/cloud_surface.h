@@ -28,8 +28,12 @@ public:
 
     // `points` (and `index`, a nearest-point index over exactly those points, or null to build
     // one) must outlive the object. O(m) for a mesh of m vertices, O(n) more for n points when
-    // their normals are stored; plus building `index` when none is given.
-    CloudSurface(const std::vector<Vec3>& points, const Mesh& mesh, const PointGrid* index = nullptr);
+    // their normals are stored; plus building `index` when none is given. `sides`, when not null:
+    // the points' own normals (one per point, in their order: the side of the surface each was
+    // taken from, nmesh/learn/sample_sides.h), used instead of the learnt mesh's, which on a part
+    // thinner than a triangle may give a point the other sheet's normal.
+    CloudSurface(const std::vector<Vec3>& points, const Mesh& mesh, const PointGrid* index = nullptr,
+                 const std::vector<Vec3>* sides = nullptr);
     // q moved along the unit normal n towards the plane through its nearest cloud point (normal
     // n), by at most `limit`; q itself when that point faces the other way (its normal against n)
     // or lies farther than `reach` from q (q is over a hole in the scan).

@@ -31,7 +31,7 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
     const Mesh learnt = options.repair_max_rounds > 0 ? mesh : Mesh();
     // The cloud's point normals come from the learnt mesh, before any pass.
     std::unique_ptr<CloudSurface> surface;
-    if (options.project) surface = std::make_unique<CloudSurface>(cloud, mesh, cloud_index);
+    if (options.project) surface = std::make_unique<CloudSurface>(cloud, mesh, cloud_index, options.point_sides);
     const CloudSurface* pull = surface.get();
     // Progress over the stage's round budget: the regularisation and fit rounds, then the repair's.
     const double budget = double(options.rounds + options.fit_rounds + std::max(options.repair_max_rounds, 0));

@@ -91,6 +91,10 @@ struct FinishOptions {
     // learning left short or the repair took back); only on a mesh the repair left without
     // defects, and only with `project`. 0 skips it.
     int cover_iterations = 3;
+    // The side of the surface each cloud point was taken from (one unit normal per point of the
+    // stage's cloud, in its order; nmesh/learn/sample_sides.h), or null: the points' normals then
+    // come from the learnt mesh (CloudSurface).
+    const std::vector<Vec3>* point_sides = nullptr;
 };
 
 struct FinishReport {

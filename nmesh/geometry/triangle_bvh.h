@@ -47,6 +47,12 @@ public:
 
     // Squared distance from p to the nearest triangle, given an upper bound on it (infinity if none).
     double nearest_squared_distance(const Vec3& p, double bound) const {
+        std::uint32_t unused;
+        return nearest(p, bound, unused);
+    }
+    // The same, and the nearest triangle in `triangle` (unchanged when none is nearer than bound;
+    // ties go to the triangle met first).
+    double nearest(const Vec3& p, double bound, std::uint32_t& triangle) const {
         double best = bound;
         // Each entry keeps its box's distance, computed when it was pushed: on popping, the best
         // may since have dropped below it.
@@ -68,7 +74,7 @@ public:
                     const auto& t = mesh_.triangles[order_[i]];
                     const double d = point_triangle_squared_distance(p, mesh_.positions[t[0]], mesh_.positions[t[1]],
                                                                      mesh_.positions[t[2]]);
-                    best = std::min(best, d);
+                    if (d < best) best = d, triangle = order_[i];
                 }
                 continue;
             }

@@ -74,6 +74,13 @@ public:
     // The handle search off from here on (the bridges stay): for a start whose genus the cloud's
     // solid already gave (solid_start.h), where a search would only add handles.
     void keep_genus() { search_handles_ = false; }
+    // Beyond the paper: the side of the surface each point was taken from, a unit normal per
+    // point (in the transformed space) or 0 where it is not known (sample_sides.h). From here on a
+    // sample whose winner's fan faces away from its side is not learnt (Statistics::side_skips):
+    // on a part thinner than an edge the nearest vertex may lie on the other sheet, and a sample
+    // that pulls it there drags the two sheets through each other. `sides` (one per point) must
+    // outlive the engine; null turns the rule off.
+    void set_sample_sides(const Vec3* sides) { sides_ = sides; }
     // Caches the rings of vertices with at most n neighbours only (RingCache::set_limit); the
     // others are read from the half-edge mesh. The results are the same bits either way; for
     // tests of both paths. O(n).
@@ -132,6 +139,7 @@ private:
     void set_position(Vertex v, const Vec3& p);
     void adapt_to(const Vec3& x, bool sampled);
     void look_ahead();
+    bool faces_side(Vertex w, const Vec3& side, const std::uint32_t* ring, std::uint32_t k) const;
     std::uint32_t early_winner(const Vec3& x) const;
 
     PointSpan points_;
@@ -146,6 +154,9 @@ private:
     std::shared_ptr<PointGrid> cloud_index_;
     Random rng_;
     Vec3 ahead_[2];                  // the next two samples, normalised
+    std::uint32_t ahead_ids_[2] = {};  // their indices in the cloud
+    std::uint32_t sample_id_ = 0;      // the index of the sample next_sample() returned last
+    const Vec3* sides_ = nullptr;      // set_sample_sides
     std::uint32_t ahead_index_ = 0;  // the index of the one after them, drawn in advance
     std::uint64_t ahead_cell_ = 0;   // ahead_[1]'s grid cell (VertexGrid::prefetch_query)
     // From this many vertices on, where the mesh no longer fits in the cache, each iteration

@@ -484,6 +484,7 @@ SolidStart solid_start(PointSpan points, const PointTransform& transform, std::u
     out.solid_genus = solid.genus;
     if (solid.surface.triangles.empty()) return out;  // a genus-0 solid walled round too far out
     Mesh mesh = Mesh::from_indexed(solid.surface);
+    out.surface = solid.surface;
     mesh.drop_faces();
     if (!simplify(mesh, start_vertices(target))) return out;
     // Dense slots: the engine's per-vertex arrays are sized by them.

@@ -89,6 +89,7 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform);
 struct SolidStart {
     int solid_genus = -1;       // of the solid, when the points wall one round (one component)
     std::optional<Mesh> mesh;   // the start, dense slots, faces outward
+    IndexedMesh surface;        // the solid's outer surface, before its simplification to the start
 };
 SolidStart solid_start(PointSpan points, const PointTransform& transform, std::uint32_t target);
 // Half the target, at most kMaxStart: a start coarse enough for the learning to shape, with the

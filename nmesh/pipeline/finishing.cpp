@@ -2,6 +2,7 @@
 #include "nmesh/pipeline/finishing.h"
 
 #include "nmesh/finish/finish.h"
+#include "nmesh/learn/sample_sides.h"
 #include "nmesh/spatial/cloud_sample.h"
 
 namespace nmesh::pipeline {
@@ -21,7 +22,8 @@ const PointGrid& cloud_index_of(std::shared_ptr<PointGrid>& cloud_index, PointSp
 
 bool finish_stage(const Mesh& learnt, std::shared_ptr<PointGrid>& cloud_index, PointSpan cloud,
                   const Normalization& norm, const Parameters& params, Reporter& reporter, Statistics& stats,
-                  Mesh& mesh, double progress_from, double progress_share, bool repair, bool last_resort) {
+                  Mesh& mesh, double progress_from, double progress_share, bool repair, bool last_resort,
+                  const IndexedMesh* solid_surface) {
     const PointGrid& index = cloud_index_of(cloud_index, cloud, norm, params, stats);
     mesh = learnt;
     FinishOptions options;
@@ -29,8 +31,14 @@ bool finish_stage(const Mesh& learnt, std::shared_ptr<PointGrid>& cloud_index, P
     options.fit_rounds = int(params.fit_rounds);
     if (!repair) options.repair_max_rounds = 0;
     options.off_cloud_last_resort = last_resort;
+    const std::vector<Vec3> points = index.indexed_points();
+    std::vector<Vec3> sides;
+    if (solid_surface != nullptr && !solid_surface->positions.empty()) {
+        sides = sample_sides(PointSpan(points), PointTransform{}, *solid_surface);
+        options.point_sides = &sides;
+    }
     const FinishReport report =
-        finish_mesh(mesh, index.indexed_points(), options, &index,
+        finish_mesh(mesh, points, options, &index,
                     [&](double fraction) { reporter.report_finishing(progress_from + progress_share * fraction); });
     stats.repair_declined = stats.repair_declined || report.repair_declined;
     return mesh.n_vertices() == learnt.n_vertices();

@@ -15,6 +15,7 @@
 
 #include "nmesh/geometry/flatness.h"
 #include "nmesh/learn/neural_mesh.h"
+#include "nmesh/learn/sample_sides.h"
 #include "nmesh/learn/solid_start.h"
 #include "nmesh/pipeline/finishing.h"
 #include "nmesh/pipeline/learning.h"
@@ -53,7 +54,14 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
     std::unique_ptr<NeuralMesh> engine =
         solid.mesh ? std::make_unique<NeuralMesh>(cloud, norm.bounds, learning, norm.transform, std::move(*solid.mesh))
                    : std::make_unique<NeuralMesh>(cloud, norm.bounds, learning, norm.transform);
-    if (solid.mesh) engine->keep_genus();
+    // From the solid's surface the learning has both sheets of every thin part: the samples'
+    // sides keep them apart (sample_sides.h).
+    std::vector<Vec3> sides;
+    if (solid.mesh) {
+        engine->keep_genus();
+        sides = sample_sides(cloud, norm.transform, solid.surface);
+        engine->set_sample_sides(sides.data());
+    }
     solid.mesh.reset();
     engine->set_profiling(callbacks.profile);
     Reporter reporter(callbacks, engine, params.target_vertices, start);
@@ -95,7 +103,8 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
         } else {
             Mesh finished;
             result.stats.finished = finish && finish_stage(learnt, cloud_index, cloud, norm, params, reporter,
-                                                           result.stats, finished, 0.0, 1.0, true, last);
+                                                           result.stats, finished, 0.0, 1.0, true, last,
+                                                           &solid.surface);
             if (result.stats.finished) learnt = Mesh();  // freed before the output mesh is built
             result.mesh = (result.stats.finished ? finished : learnt).to_indexed();
         }

@@ -73,6 +73,7 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << "  \"swaps_illegal\": " << s.swaps_illegal << ",\n"
       << "  \"moves_shortened\": " << s.moves_shortened << ",\n"
       << "  \"folds_undone\": " << s.folds_undone << ",\n"
+      << "  \"side_skips\": " << s.side_skips << ",\n"
       << "  \"twist_checks\": " << s.twist_checks << ",\n"
       << "  \"twist_retries\": " << s.twist_retries << ",\n"
       << "  \"twists_kept\": " << s.twists_kept << ",\n"

@@ -1,0 +1,21 @@
+#include "nmesh/learn/sample_sides.h"
+
+#include "nmesh/spatial/point_grid.h"
+
+namespace nmesh {
+
+std::vector<Vec3> sample_sides(PointSpan points, const PointTransform& transform, const IndexedMesh& surface) {
+    std::vector<Vec3> sides;
+    if (surface.positions.empty()) return sides;
+    sides.resize(points.size());
+    const PointGrid grid{PointSpan(surface.positions)};
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const Vec3 p = transform(points[i]);
+        const Vec3 q = surface.positions[grid.nearest(p)];
+        const float length = norm(q - p);
+        sides[i] = length > 0.0f ? (q - p) * (1.0f / length) : Vec3{};
+    }
+    return sides;
+}
+
+}  // namespace nmesh
