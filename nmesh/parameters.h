@@ -43,6 +43,13 @@ struct Parameters {
     // learning starts from its outer surface, with its genus and shape (solid_start.h), instead
     // of growing from a tetrahedron with the handle search. false: always the tetrahedron.
     bool solid_start = true;
+    // Topology open: the smallest hole in the scan to open, as the distance from its middle to the
+    // nearest point, in local point spacings (nmesh/finish/open_surface.h), in [0, 1000]. 0: the
+    // default rule, which opens holes deeper than 2.75 times the larger of 1.2 typical edges and
+    // 1.5 spacings, and keeps closed the sampling's own gaps (a scan's sparse parts) as well as
+    // holes a few spacings across (the bunny's three small base holes). A smaller value opens
+    // smaller holes, and sparse parts of a scan with them.
+    float min_hole = 0.0f;
     std::uint64_t seed = 1;  // the same seed and input give a bit-identical mesh
     // Iterations of steps 1-6 (no splits or collapses) run after the target size is reached, so
     // the last vertices settle onto the surface; in units of the final vertex count n

@@ -50,6 +50,9 @@ struct Statistics {
     std::uint64_t layer_faces_removed = 0;
     std::uint64_t open_faces_removed = 0;
     std::uint64_t crossing_faces_removed = 0;
+    // and the vertices given back after those cuts (midpoint splits of the longest edges,
+    // nmesh/finish/vertex_top_up.h), so that the result has the vertex count asked for.
+    std::uint64_t open_vertices_added = 0;
     std::uint64_t indexed_points = 0;  // points in the nearest-point index (0 when none was built)
     std::uint64_t index_bytes = 0;     //   its memory (PointGrid::memory_bytes)
     double seconds = 0.0;              // learning time, wall clock (normalisation included)

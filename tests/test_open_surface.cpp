@@ -17,6 +17,7 @@
 #include "nmesh/finish/finish.h"
 #include "nmesh/mesh/mesh_pieces.h"
 #include "nmesh/finish/open_surface.h"
+#include "nmesh/finish/vertex_top_up.h"
 #include "nmesh/finish/view_sheet.h"
 #include "nmesh/geometry/delaunay_2d.h"
 #include "nmesh/geometry/triangle_intersection.h"
@@ -95,9 +96,10 @@ TEST_CASE("topology open: a scan without its cap gets one boundary loop there, n
     CHECK(r.stats.boundary_loops == 1);
     CHECK(r.stats.open_faces_removed > 0);
     CHECK(r.stats.crossing_pairs == 0);
-    // The vertices inside the hole go with its faces; the rest stay.
-    CHECK(r.mesh.positions.size() <= n);
-    CHECK(r.mesh.positions.size() > n - n / 20);
+    // The vertices inside the hole go with its faces, and as many come back as splits of the
+    // longest edges: the count asked for.
+    CHECK(r.mesh.positions.size() == n);
+    CHECK(r.stats.open_vertices_added > 0);
     // The boundary runs round the cut (z = 0.6), not through the sampled part below it.
     for (std::uint32_t v = 0; v < m.vertex_capacity(); ++v)
         if (!m.is_removed(Vertex(v)) && m.is_boundary(Vertex(v))) CHECK(m.position(Vertex(v)).z > 0.4f);
@@ -333,7 +335,8 @@ TEST_CASE("cut_unsupported opens a hole the cloud's rim surrounds, and keeps a b
     CHECK(t.components == 1);
     CHECK(t.boundary_loops == 1);
     CHECK(t.genus == 0);
-    CHECK(report.rim_share < kViewRimShare);  // a closed object with a hole, not a partial view
+    // A closed object with a hole, not a partial view.
+    CHECK_FALSE(view_cloud(PointGrid(PointSpan(capless)), 0.02f).partial);
     // The hole is the cap's: no face kept above the cap's middle, none removed well below the rim.
     for (const auto& tri : open.triangles)
         CHECK((open.positions[tri[0]].z + open.positions[tri[1]].z + open.positions[tri[2]].z) / 3.0f < 0.95f);
@@ -571,4 +574,50 @@ TEST_CASE("view_sheet keeps a sparsely sampled part of a view, and nothing where
     const double without = sparse_side_area(false);
     MESSAGE("without its points: " << without);
     CHECK(without < 0.05);
+}
+
+TEST_CASE("the vertex top-up gives back the count with the same surface, boundary and validity") {
+    // An icosphere with a hole round one vertex: a manifold with one boundary loop.
+    Mesh m = Mesh::from_indexed(test::icosphere(3));
+    std::vector<Face> around;
+    m.for_each_face_around(Vertex(0), [&](Face f) { around.push_back(f); });
+    for (Face f : around) m.try_remove_face(f);
+    m.build_faces();
+    const IndexedMesh holed = m.to_indexed();
+    const auto area = [](const IndexedMesh& x) {
+        double a = 0.0;
+        for (const auto& t : x.triangles)
+            a += 0.5 * double(norm(cross(x.positions[t[1]] - x.positions[t[0]], x.positions[t[2]] - x.positions[t[0]])));
+        return a;
+    };
+    const auto longest = [](const IndexedMesh& x) {
+        float l = 0.0f;
+        for (const auto& t : x.triangles)
+            for (int k = 0; k < 3; ++k) l = std::max(l, distance(x.positions[t[k]], x.positions[t[(k + 1) % 3]]));
+        return l;
+    };
+    const std::uint32_t used = std::uint32_t(holed.positions.size());
+    REQUIRE(mesh_topology(holed).isolated_vertices == 0);
+    for (const std::uint32_t more : {1u, 17u, 200u}) {
+        std::uint32_t added = 0;
+        const IndexedMesh full = top_up_vertices(holed, used + more, added);
+        CHECK(added == more);
+        CHECK(full.positions.size() == used + more);
+        const MeshTopology t = mesh_topology(full);
+        CHECK(t.manifold);
+        CHECK(t.boundary_loops == 1);
+        CHECK(t.genus == 0);
+        CHECK(t.isolated_vertices == 0);
+        CHECK(count_self_intersections(full) == 0);
+        CHECK(std::abs(area(full) - area(holed)) < 1e-5 * area(holed));  // the same surface
+        CHECK(longest(full) <= longest(holed));
+    }
+    // Nothing to add: the mesh as it is.
+    std::uint32_t added = 7;
+    CHECK(top_up_vertices(holed, used, added).triangles == holed.triangles);
+    CHECK(added == 0);
+    // A lone triangle: every edge joins two boundary vertices, none can be split.
+    const IndexedMesh lone{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}}};
+    CHECK(top_up_vertices(lone, 10, added).positions.size() == 3);
+    CHECK(added == 0);
 }

@@ -57,6 +57,9 @@ constexpr const char* kReconstructUsage =
     "  --topology MODE        sphere: genus 0, the paper's algorithm; closed: a closed surface of the\n"
     "                         cloud's genus (its solid's, or handles learnt where it has through-holes);\n"
     "                         open: as closed, then opened where the cloud has no data (default closed)\n"
+    "  --min-hole S           open: the smallest hole to open, the distance from its middle to the\n"
+    "                         nearest point in local point spacings (default 0: holes several\n"
+    "                         spacings deep open, the sampling's gaps and small holes stay closed)\n"
     "  --no-solid-start       closed and open: grow from a tetrahedron, not from the solid the cloud\n"
     "                         walls round (the handles then come from the handle search)\n"
     "  --no-fold-guard        let step 3 fold the winner's triangles, as the paper's algorithm does\n"
@@ -166,7 +169,7 @@ int run_reconstruct(int argc, char** argv) {
         argc, argv, 2,
         {"--no-edge-swap", "--no-fold-guard", "--no-solid-start", "--no-finish", "--quiet", "--ascii", "--save-on-interrupt"},
         {"-o", "--output", "--vertices", "--alpha-w", "--alpha-n", "--alpha", "--cvs", "--cec", "--seed", "--snapshots",
-         "--stats", "--settle", "--finish-rounds", "--fit-rounds", "--index-points", "--topology"});
+         "--stats", "--settle", "--finish-rounds", "--fit-rounds", "--index-points", "--topology", "--min-hole"});
     if (args.positional().size() != 1) throw UsageError("reconstruct takes one INPUT file");
     const std::string input = args.positional()[0];
     const std::string output = args.has("-o") ? args.text("-o") : args.text("--output");
@@ -201,6 +204,7 @@ int run_reconstruct(int argc, char** argv) {
     p.cvs = bounded_count("--cvs", p.cvs);
     p.cec = bounded_count("--cec", p.cec);
     p.settle = args.number("--settle", p.settle);
+    p.min_hole = float(args.number("--min-hole", p.min_hole));
     p.seed = args.count("--seed", p.seed);
     p.edge_swap = !args.has("--no-edge-swap");
     p.fold_guard = !args.has("--no-fold-guard");

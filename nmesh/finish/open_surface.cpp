@@ -1,5 +1,7 @@
 #include "nmesh/finish/open_surface.h"
 
+#include "nmesh/finish/cloud_layers.h"
+
 #include "nmesh/finish/cloud_normals.h"
 #include "nmesh/geometry/triangle_intersection.h"
 #include "nmesh/mesh/face_regions.h"
@@ -186,7 +188,8 @@ CloudView view_cloud(const PointGrid& cloud, float spacing) {
         view.spacing = local[local.size() / 2];
     }
     view.rim_share = flat_rim_share(view.rim);
-    view.partial = view.rim_share >= kViewRimShare;
+    view.layer_share = multi_layer_share(view.points, view.spacing);
+    view.partial = view.layer_share < kViewLayerShare;
     if (view.partial) {
         view.normals = view.rim.normal;
         Orientation o = orient_normals(view.points, view.normals, spacing);
@@ -206,6 +209,7 @@ IndexedMesh cut_unsupported(const Mesh& mesh, const PointGrid& cloud, const Clou
     std::vector<FaceGeometry> g(nf);
     std::vector<char> far(nf, 0);
     std::vector<float> away(nf, 0.0f);
+    std::vector<std::uint32_t> nearest(nf, 0);
     std::vector<Vec3> rim_at;
     for (std::size_t i = 0; i < points.size(); ++i)
         if (rim[i]) rim_at.push_back(points[i]);
@@ -215,6 +219,7 @@ IndexedMesh cut_unsupported(const Mesh& mesh, const PointGrid& cloud, const Clou
         g[f] = geometry(mesh, Face(f));
         const NearestPoint p = cloud.find_nearest(g[f].centroid);
         away[f] = std::sqrt(p.squared_distance);
+        nearest[f] = p.index;
         far[f] = no_data(p, view, typical);
     }
     // Which regions of far faces are holes in the scan (see open_surface.h): measured round the
@@ -224,7 +229,11 @@ IndexedMesh cut_unsupported(const Mesh& mesh, const PointGrid& cloud, const Clou
         for (std::uint32_t f : region)
             if (away[f] > away[deepest]) deepest = f;
         const float depth = away[deepest] / limit;
-        if (depth < std::min(kOpenHoleDepth, kOpenEndDepth)) return false;
+        // With a smallest hole given: its depth in local spacings, at the deepest face.
+        const bool given = view.hole_spacings > 0.0f;
+        const bool deep_hole = given ? away[deepest] >= view.hole_spacings * view.rim.spacing[nearest[deepest]]
+                                     : depth >= kOpenHoleDepth;
+        if (!deep_hole && depth < kOpenEndDepth) return false;
         const Vec3 c = g[deepest].centroid;
         const float reach = kOpenRimReach * away[deepest] + limit;
         std::vector<Vec3> ring;  // the rim points in reach
@@ -237,7 +246,7 @@ IndexedMesh cut_unsupported(const Mesh& mesh, const PointGrid& cloud, const Clou
         const Vec3 n = g[deepest].normal;
         const Vec3 u = normalized(cross(n, std::fabs(n.x) < 0.9f ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
         const bool surrounded = largest_gap(c, ring, u, cross(n, u)) < kOpenSurroundGap;
-        const bool hole = surrounded && depth >= kOpenHoleDepth;
+        const bool hole = surrounded && deep_hole;
         const bool end = view.partial && depth >= kOpenEndDepth && float(ring.size()) >= kOpenRimShare * float(all);
         return hole || end;
     });

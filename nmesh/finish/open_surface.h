@@ -2,12 +2,9 @@
 // cloud has no data, the one sheet of a partial view, and no crossing triangles.
 //
 // The learning makes a closed surface; these steps cut it open, each keeping a manifold with
-// boundary, without bow-ties. The cloud is read once (view_cloud): its rim, its local spacing,
-// and whether it is a partial view: a cloud with at least kViewRimShare of its points on its rim
-// where the cloud is flat (nmesh/finish/cloud_rim.h; creases and corners read as rim). Measured:
-// 3.3% for the single view bunny_scan090; at most 0.73% for the shared closed clouds and the
-// bunny with its five base holes (the rocker arm 0.73%, the bunny 0.29%, the knot 0.14%, the
-// horse 0.12%, the eight 0.09%). reconstruct() then runs:
+// boundary, without bow-ties. The cloud is read once (view_cloud): its rim (nmesh/finish/
+// cloud_rim.h), its local spacing, and whether it is a partial view: one layer of points seen
+// from some direction (nmesh/finish/cloud_layers.h). reconstruct() then runs:
 //  1. on a partial view only, the view's sheet in place of the learnt mesh (view_sheet,
 //     nmesh/finish/view_sheet.h), in one or more pieces (nmesh/mesh/mesh_pieces.h), each
 //     finished as a mesh of its own;
@@ -20,7 +17,10 @@
 //     kOpenSpacings global spacings) and by the cloud's rim (the points at the edge of the
 //     sampled surface) within kOpenRimReach depths of the deepest face:
 //     - a hole: the rim points surround the deepest face (seen along its normal, no free sector
-//       of kOpenSurroundGap or more) and the depth is at least kOpenHoleDepth;
+//       of kOpenSurroundGap or more) and the depth is at least kOpenHoleDepth; or, with the
+//       smallest hole to open given (Parameters::min_hole, in local spacings), the deepest face
+//       lies at least that many local spacings from every point (a face then has no data beyond
+//       half of it, when that is less than the limit);
 //     - an end, on a partial view only: the depth is at least kOpenEndDepth and at least
 //       kOpenRimShare of the points in reach are on the rim (the balloon a closed mesh wraps round
 //       the edge of a single view).
@@ -62,7 +62,6 @@ struct OpenReport {
     float rim_share = 0.0f;  // the share of the cloud's points on its rim where it is flat
 };
 
-inline constexpr float kViewRimShare = 0.02f;
 inline constexpr std::size_t kOpenMinFaces = 20;  // a smaller piece left by the cut goes
 inline constexpr float kOpenRimReach = 2.0f;
 inline constexpr float kOpenSurroundGap = 1.5707964f;  // 90 degrees
@@ -71,6 +70,10 @@ inline constexpr float kOpenEndDepth = 5.0f;
 inline constexpr float kOpenRimShare = 0.05f;
 inline constexpr float kOpenEdges = 1.2f;
 inline constexpr float kOpenSpacings = 1.5f;
+// With a smallest hole given, a face has no data beyond at least this many local spacings: the
+// centroids of a mesh of 5,000 vertices on a well-sampled cloud lie within it of a point for
+// 95-97% of the faces, so that only a hole's rim (its surround test) tells a region apart.
+inline constexpr float kOpenMinSpacings = 1.0f;
 inline constexpr int kCrossingRounds = 3;  // a cut makes no new crossing: one round suffices
 
 // What the open steps know of the cloud: its indexed points, their rim (nmesh/finish/cloud_rim.h),
@@ -79,17 +82,26 @@ struct CloudView {
     std::vector<Vec3> points;  // the nearest-point index's points, in its order
     CloudRim rim;
     float spacing = 0.0f;    // the median of the points' local spacings
-    float rim_share = 0.0f;  // the share of the points on the rim where the cloud is flat
-    bool partial = false;    // rim_share >= kViewRimShare
+    float rim_share = 0.0f;    // the share of the points on the rim where the cloud is flat
+    float layer_share = 1.0f;  // the cloud's multi-layer share (nmesh/finish/cloud_layers.h)
+    bool partial = false;      // layer_share < kViewLayerShare: one layer seen from some direction
     std::vector<Vec3> normals;  // on a partial view: per point, oriented (cloud_normals.h)
     Vec3 direction;             //   the direction towards the scanner (orient_normals)
     std::vector<std::uint32_t> part;  // and per point its connected part (orient_normals)
+    // Parameters::min_hole: the smallest hole to open, as the distance from its middle to the
+    // nearest point in local spacings; 0 for the rule of open_surface.h (kOpenHoleDepth limits).
+    float hole_spacings = 0.0f;
 };
 
 // Whether a place whose nearest cloud point is `near` has no data: farther from it than
-// kOpenEdges typical edges and kOpenSpacings local spacings (the spacing at that point).
+// kOpenEdges typical edges and kOpenSpacings local spacings (the spacing at that point); with a
+// smallest hole given (CloudView::hole_spacings), farther than half of it or kOpenMinSpacings,
+// the larger, when that is less.
 inline bool no_data(const NearestPoint& near, const CloudView& view, float typical_edge) {
-    const float limit = std::max(kOpenEdges * typical_edge, kOpenSpacings * view.rim.spacing[near.index]);
+    const float spacing = view.rim.spacing[near.index];
+    float limit = std::max(kOpenEdges * typical_edge, kOpenSpacings * spacing);
+    if (view.hole_spacings > 0.0f)
+        limit = std::min(limit, std::max(0.5f * view.hole_spacings, kOpenMinSpacings) * spacing);
     return near.squared_distance > limit * limit;
 }
 

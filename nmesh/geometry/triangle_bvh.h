@@ -40,6 +40,7 @@ public:
             centroids_[t] = b.center();
             order_[t] = t;
         }
+        if (f == 0) return;  // no triangle: every query finds none
         nodes_.reserve(2 * (f / kLeafSize + 1));
         nodes_.emplace_back();
         build(0, 0, std::uint32_t(f));
@@ -62,6 +63,7 @@ public:
         };
         Entry stack[64];
         int top = 0;
+        if (nodes_.empty()) return best;
         stack[top++] = {0, box_squared_distance(nodes_[0].box, p)};
         while (top > 0) {
             const Entry e = stack[--top];

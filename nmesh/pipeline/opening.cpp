@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "nmesh/finish/open_surface.h"
+#include "nmesh/finish/vertex_top_up.h"
 #include "nmesh/finish/view_sheet.h"
 #include "nmesh/mesh/mesh_pieces.h"
 #include "nmesh/pipeline/finishing.h"
@@ -26,7 +27,8 @@ void open_output(Mesh& learnt, bool finish, bool last, std::shared_ptr<PointGrid
         area += 0.5 * double(nmesh::norm(cross(b - a, learnt.position(learnt.to(learnt.next(h))) - a)));
     }
     // The spacing guess: the mesh's area shared among the points (twice the sheet's on a view).
-    const CloudView view = view_cloud(index, float(std::sqrt(area / double(std::max<std::size_t>(index.size(), 1)))));
+    CloudView view = view_cloud(index, float(std::sqrt(area / double(std::max<std::size_t>(index.size(), 1)))));
+    view.hole_spacings = params.min_hole;
     OpenReport report;
     std::vector<Mesh> pieces;
     if (view.partial) {
@@ -69,6 +71,10 @@ void open_output(Mesh& learnt, bool finish, bool last, std::shared_ptr<PointGrid
     std::uint32_t crossing = 0;
     result.mesh = last || view.partial ? cut_crossings(join_pieces(shapes), crossing) : join_pieces(shapes);
     report.removed_crossing += crossing;
+    // The vertices the cuts took, given back where the edges are longest (vertex_top_up.h).
+    std::uint32_t added = 0;
+    result.mesh = top_up_vertices(result.mesh, params.target_vertices, added);
+    stats.open_vertices_added = added;
     stats.layer_faces_removed = report.removed_layer;
     stats.open_faces_removed = report.removed_unsupported;
     stats.crossing_faces_removed = report.removed_crossing;

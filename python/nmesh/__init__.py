@@ -188,6 +188,7 @@ def reconstruct(
     edge_swap: bool = True,
     fold_guard: bool = True,
     solid_start: bool = True,
+    min_hole: float = 0.0,
     finish: bool = True,
     seed: int = 1,
     progress: Optional[ProgressCallback] = None,
@@ -219,6 +220,9 @@ def reconstruct(
     fold_guard: step 3 may not fold the winner's triangles (False: eq. (2) as the paper has it).
     solid_start: closed and open: start from the solid the cloud walls round, when it walls one
         (False: grow from a tetrahedron, the handles from the handle search).
+    min_hole: open: the smallest hole to open, the distance from its middle to the nearest point
+        in local point spacings (0: the default rule, which keeps the sampling's gaps and holes a
+        few spacings across closed).
     finish: the finishing stage (flips, relaxation onto the cloud, repair of folds).
     seed: the random seed (an integer in [0, 2**64 - 1]).
     progress: called about every 65,536 iterations and once when the learning ends, as
@@ -263,6 +267,7 @@ def reconstruct(
         topology=topology,
         fold_guard=_flag("fold_guard", fold_guard),
         solid_start=_flag("solid_start", solid_start),
+        min_hole=_real("min_hole", min_hole),
         finish=_flag("finish", finish),
         seed=_count("seed", seed, _UINT64_MAX),
         settle=_real("settle", settle),

@@ -33,6 +33,7 @@ def reconstruct(
     topology: str,
     fold_guard: bool,
     solid_start: bool,
+    min_hole: float,
     progress: Optional[Callable[[int, int, float], Optional[bool]]],
     metrics: bool,
 ) -> Tuple[_Float32Array, _Int32Array, str, bool]: ...
