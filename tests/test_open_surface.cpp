@@ -14,6 +14,7 @@
 #include "cloud_fixtures.h"
 #include "engine_checks.h"
 #include "mesh_fixtures.h"
+#include "nmesh/error.h"
 #include "nmesh/finish/finish.h"
 #include "nmesh/mesh/mesh_pieces.h"
 #include "nmesh/finish/open_surface.h"
@@ -620,4 +621,41 @@ TEST_CASE("the vertex top-up gives back the count with the same surface, boundar
     const IndexedMesh lone{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}}};
     CHECK(top_up_vertices(lone, 10, added).positions.size() == 3);
     CHECK(added == 0);
+}
+
+TEST_CASE("--min-hole opens a hole the default rule keeps closed, and nothing on a closed sample") {
+    // A sphere sample with a hole about 5 local spacings deep (its middle 0.1 from the rim, the
+    // spacing about 0.02): at 8,000 vertices the default rule wants 2.75 limits (about 0.13).
+    const std::size_t points = test::kSanitized ? 12000 : 30000;
+    PointCloud holed;
+    for (const Vec3& p : test::sphere_cloud(points, 1.0f, {}, 17).points)
+        if (p.z < std::cos(0.1f)) holed.points.push_back(p);
+    Parameters p;
+    p.target_vertices = test::kSanitized ? 3000 : 8000;
+    p.topology = Topology::open;
+    const Result closed = reconstruct(holed, p);
+    CHECK(closed.stats.boundary_loops == 0);
+    p.min_hole = 3.0f;
+    const Result open = reconstruct(holed, p);
+    CHECK(open.stats.boundary_loops == 1);
+    CHECK(open.stats.crossing_pairs == 0);
+    CHECK(open.mesh.positions.size() == p.target_vertices);
+    for (const auto& t : open.mesh.triangles) {
+        const Vec3 c = (open.mesh.positions[t[0]] + open.mesh.positions[t[1]] + open.mesh.positions[t[2]]) * (1.0f / 3.0f);
+        CHECK(c.z < 0.9995f);  // no face left over the hole's middle
+    }
+    // The whole sphere has no hole to open, whatever the smallest.
+    const Result whole = reconstruct(test::sphere_cloud(points, 1.0f, {}, 17), p);
+    CHECK(whole.stats.boundary_loops == 0);
+    CHECK(whole.stats.open_faces_removed == 0);
+    // The parameter's range.
+    p.min_hole = -1.0f;
+    CHECK_THROWS_AS(p.validate(), ParameterError);
+    p.min_hole = 2000.0f;
+    try {
+        p.validate();
+        FAIL("validate() accepted min_hole 2000");
+    } catch (const ParameterError& e) {
+        CHECK(std::string(e.parameter()) == "min_hole");
+    }
 }

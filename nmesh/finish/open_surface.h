@@ -71,8 +71,9 @@ inline constexpr float kOpenRimShare = 0.05f;
 inline constexpr float kOpenEdges = 1.2f;
 inline constexpr float kOpenSpacings = 1.5f;
 // With a smallest hole given, a face has no data beyond at least this many local spacings: the
-// centroids of a mesh of 5,000 vertices on a well-sampled cloud lie within it of a point for
-// 95-97% of the faces, so that only a hole's rim (its surround test) tells a region apart.
+// faces' centroids lie within it of a point for 89-99.7% of the faces of the horse's, the bull's,
+// knot1's, the fandisk's, the camel's and the hand's meshes at points / 2 and points / 6
+// vertices, so that the rest is told apart by the rim round a region (its surround test).
 inline constexpr float kOpenMinSpacings = 1.0f;
 inline constexpr int kCrossingRounds = 3;  // a cut makes no new crossing: one round suffices
 
