@@ -247,6 +247,16 @@ TEST_CASE("parameters that stop growth on any cloud end with the same error") {
     p.target_vertices = 1000;
     p.cec = 1;
     CHECK_THROWS_WITH_AS(reconstruct(c, p), doctest::Contains("the mesh stopped growing"), InputError);
+    // Topology closed tries every start first: the sphere sample's solid, the tetrahedron with
+    // the searches, the paper's learning; the sphere mode has only the last.
+    CHECK_THROWS_WITH_AS(reconstruct(c, p), doctest::Contains("from each of the 3 starts tried"), InputError);
+    p.topology = Topology::sphere;
+    try {
+        reconstruct(c, p);
+        FAIL("the sphere mode grew with Cec 1");
+    } catch (const InputError& e) {
+        CHECK(std::string(e.what()).find("starts tried") == std::string::npos);
+    }
 }
 
 TEST_CASE("a target of 4: the tetrahedron learns the cloud instead of being returned as placed") {

@@ -39,13 +39,13 @@ void learn_to_target(NeuralMesh& engine, std::size_t cloud_size, const Parameter
             at.largest = n;
             at.largest_pass = engine.stats().removal_passes;
         } else if (engine.stats().removal_passes - at.largest_pass >= kStallPeriods) {
-            throw InputError("the mesh stopped growing at " + std::to_string(at.largest) + " vertices (" +
-                             std::to_string(engine.stats().removal_passes - at.largest_pass) +
-                             " removal periods without a larger mesh, " + std::to_string(engine.iteration()) +
-                             " iterations): " + std::to_string(cloud_size) + " points cannot carry " +
-                             std::to_string(params.target_vertices) + " vertices with Cvs " +
-                             std::to_string(params.cvs) + " and Cec " + std::to_string(params.cec) +
-                             "; ask for at most about " + std::to_string(at.largest) + " vertices, or a larger Cec");
+            throw Stalled("the mesh stopped growing at " + std::to_string(at.largest) + " vertices (" +
+                          std::to_string(engine.stats().removal_passes - at.largest_pass) +
+                          " removal periods without a larger mesh, " + std::to_string(engine.iteration()) +
+                          " iterations): " + std::to_string(cloud_size) + " points cannot carry " +
+                          std::to_string(params.target_vertices) + " vertices with Cvs " + std::to_string(params.cvs) +
+                          " and Cec " + std::to_string(params.cec) + "; ask for at most about " +
+                          std::to_string(at.largest) + " vertices, or a larger Cec");
         }
         // A checkpoint at each power of two and at the target, up to kLastCheckpoint.
         if (cp.on && at.next_checkpoint <= kLastCheckpoint &&

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "nmesh/error.h"
 #include "nmesh/learn/neural_mesh.h"
 #include "nmesh/parameters.h"
 #include "nmesh/pipeline/normalization.h"
@@ -89,7 +90,11 @@ struct Checkpoints {
 // limited number of vertices (53,458 for the bunny's 35,947 points with Table 2's Cec and Cvs),
 // and any cloud carries few when Cec is small against Cvs. A growing mesh reaches a new largest
 // size in every step-8 period (Cec * n / Cvs splits per period against a few removals);
-// kStallPeriods periods in a row without one mean the mesh has stopped growing.
+// kStallPeriods periods in a row without one mean the mesh has stopped growing: Stalled, whose
+// message names the size reached (reconstruct() tries another start before it reports one).
+struct Stalled : InputError {
+    using InputError::InputError;
+};
 void learn_to_target(NeuralMesh& engine, std::size_t cloud_size, const Parameters& params, const Callbacks& callbacks,
                      const Normalization& norm, Reporter& reporter, Checkpoints& cp);
 

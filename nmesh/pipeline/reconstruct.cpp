@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <utility>
 
 #include "nmesh/geometry/flatness.h"
@@ -35,24 +36,18 @@ double estimated_seconds_left(const Progress& p) {
 
 using namespace pipeline;
 
-Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& callbacks) {
-    params.validate();
-    const auto start = Clock::now();
-    const Normalization norm(require_reconstructible(cloud));
-    // The fold guard is off for a flat cloud: its closed mesh must fold flat, two coinciding sheets.
-    Parameters learning = params;
-    learning.fold_guard = params.fold_guard && !is_flat(cloud);
-    // On the heap, so that it can be destroyed, and its memory freed, as soon as the learning ends.
-    // Topology closed and open: from the solid's surface when the cloud walls a solid round
-    // (solid_start.h), its genus kept (the handle search off: a handle the solid's offset closes
-    // is narrower than a few point spacings); otherwise, and in sphere mode, from the
-    // tetrahedron, with the handle search.
-    SolidStart solid;
-    if (params.topology != Topology::sphere && params.solid_start)
-        solid = solid_start(cloud, norm.transform, params.target_vertices);
+namespace {
+
+// The learning from `solid`'s surface (the tetrahedron when it has none), to the target size, and
+// what follows it: finishing, opening, the output check, the output retries. `learning`: the
+// parameters of the engine, its checkpoints and its searches; `params`: the caller's, which decide
+// the output's stages. Throws Stalled when the mesh stops growing.
+Result learn_from(PointSpan cloud, const Parameters& params, const Parameters& learning, const Callbacks& callbacks,
+                  const Normalization& norm, Clock::time_point start, SolidStart& solid) {
     const std::uint64_t start_vertices = solid.mesh ? solid.mesh->n_vertices() : 4;
+    // On the heap, so that it can be destroyed, and its memory freed, as soon as the learning ends.
     std::unique_ptr<NeuralMesh> engine =
-        solid.mesh ? std::make_unique<NeuralMesh>(cloud, norm.bounds, learning, norm.transform, std::move(*solid.mesh))
+        solid.mesh ? std::make_unique<NeuralMesh>(cloud, norm.bounds, learning, norm.transform, *solid.mesh)
                    : std::make_unique<NeuralMesh>(cloud, norm.bounds, learning, norm.transform);
     // From the solid's surface the learning has both sheets of every thin part: the samples'
     // sides keep them apart (sample_sides.h).
@@ -62,11 +57,10 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
         sides = sample_sides(cloud, norm.transform, solid.surface);
         engine->set_sample_sides(sides.data());
     }
-    solid.mesh.reset();
     engine->set_profiling(callbacks.profile);
     Reporter reporter(callbacks, engine, params.target_vertices, start);
 
-    Checkpoints checkpoints(*engine, params);
+    Checkpoints checkpoints(*engine, learning);
     // Output retries, for a target up to twice the last checkpoint (which is then at least half
     // the learning) and with the finishing stage (without it the learnt mesh is wanted as it is).
     // A larger target is not retried: its last checkpoint is most of the learning back, and the
@@ -77,7 +71,7 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
     Result result;
     double finish_seconds = 0.0;  // the finishing stage's time over the attempts
     for (std::uint32_t attempt = 0;; ++attempt) {
-        learn_to_target(*engine, cloud.size(), params, callbacks, norm, reporter, checkpoints);
+        learn_to_target(*engine, cloud.size(), learning, callbacks, norm, reporter, checkpoints);
         if (!reporter.cancelled()) settle(*engine, params, reporter);
         const double learnt_at = reporter.elapsed();
 
@@ -127,6 +121,50 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
         checkpoints.restore(*engine, *checkpoints.last);
     }
     return result;
+}
+
+}  // namespace
+
+Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& callbacks) {
+    params.validate();
+    const auto start = Clock::now();
+    const Normalization norm(require_reconstructible(cloud));
+    // The fold guard is off for a flat cloud: its closed mesh must fold flat, two coinciding sheets.
+    Parameters learning = params;
+    learning.fold_guard = params.fold_guard && !is_flat(cloud);
+    // Topology closed and open: from the solid's surface when the cloud walls a solid round
+    // (solid_start.h), its genus kept (the handle search off: a handle the solid's offset closes
+    // is narrower than a few point spacings); otherwise, and in sphere mode, from the
+    // tetrahedron, with the handle search.
+    SolidStart solid;
+    if (params.topology != Topology::sphere && params.solid_start)
+        solid = solid_start(cloud, norm.transform, params.target_vertices);
+    // Choice: a learning whose mesh stops growing is tried again from the next start: from the
+    // solid's surface, then from the tetrahedron with the searches (as --no-solid-start), then the
+    // paper's learning (as topology sphere: no checkpoints, no searches; its output still opened
+    // in topology open). A start that leads the learning astray (a solid's surface far outside a
+    // scan with many holes, where the vertices the samples reach are too few to grow) is not the
+    // cloud's limit; the error, naming the size reached, is reported only when every start stalls.
+    std::uint64_t stalled = 0;
+    for (;;) {
+        try {
+            Result r = learn_from(cloud, params, learning, callbacks, norm, start, solid);
+            r.stats.start_retries = stalled;
+            return r;
+        } catch (const Stalled& e) {
+            ++stalled;
+            if (solid.mesh) {
+                solid = SolidStart();
+            } else if (learning.topology != Topology::sphere) {
+                learning.topology = Topology::sphere;
+            } else {
+                if (stalled == 1) throw;
+                throw InputError(std::string(e.what()) + " (from each of the " + std::to_string(stalled) +
+                                 " starts tried: " + (stalled == 3 ? "the solid's surface, " : "") +
+                                 "the tetrahedron, and the paper's learning)");
+            }
+        }
+    }
 }
 
 }  // namespace nmesh

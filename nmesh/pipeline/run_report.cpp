@@ -79,6 +79,7 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << "  \"twists_kept\": " << s.twists_kept << ",\n"
       << "  \"output_retries\": " << s.output_retries << ",\n"
       << "  \"solid_genus\": " << s.solid_genus << ",\n"
+      << "  \"start_retries\": " << s.start_retries << ",\n"
       << "  \"start_vertices\": " << s.start_vertices << ",\n"
       << "  \"topology_checks\": " << s.topology_checks << ",\n"
       << "  \"membrane_patches\": " << s.membrane_patches << ",\n"
