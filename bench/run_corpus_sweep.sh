@@ -6,8 +6,10 @@
 # Seeds 1-10. Writes bench/results/corpus.{csv,md}.
 #   bench/run_corpus_sweep.sh            the full sweep (about an hour on 2 cores)
 #   bench/run_corpus_sweep.sh --ci       the reduced sweep CI runs: seed 1, the closed clouds at
-#                                        points / 6; fails when a closed cloud's run has the wrong
-#                                        genus, crossing pairs, inward faces or an error
+#                                        points / 6, the range images open at 20,000 vertices; fails
+#                                        on an error or crossing pairs, or, closed, on inward faces
+#                                        or a genus above the reference's (a handle missed is
+#                                        reported in the table, not failed: docs/algorithm.md)
 #   bench/run_corpus_sweep.sh --seeds A-B [--out NAME]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -42,10 +44,23 @@ if [ $ci = 1 ]; then
   status=0
   $sweep "${closed[@]:0:$half}" --seeds 1 --fractions 6 --csv "$out/a.csv" --md "$out/a.md" --check 2> "$out/a.log" &
   pid=$!
-  $sweep "${closed[@]:$half}" --seeds 1 --fractions 6 --csv "$out/b.csv" --md "$out/b.md" --check 2> "$out/b.log" || status=1
+  {
+    $sweep "${closed[@]:$half}" --seeds 1 --fractions 6 --csv "$out/b.csv" --md "$out/b.md" --check 2> "$out/b.log" &&
+      $sweep "${scans[@]}" --topology open --seeds 1 --sizes 20000 --csv "$out/d.csv" --md "$out/d.md" --check \
+        2> "$out/d.log"
+  } || status=1
   wait $pid || status=1
-  cat "$out/a.md"; tail -n +3 "$out/b.md"
-  [ $status = 0 ] || echo "FAILED: a closed cloud's run has the wrong genus, crossing pairs, inward faces or an error"
+  cat "$out/a.md"; tail -n +3 "$out/b.md"; tail -n +3 "$out/d.md"
+  # The check must see a defect where there is one: a closed mesh round a single view crosses
+  # itself.
+  if $sweep "${scans[0]}" --seeds 1 --sizes 3000 --csv "$out/control.csv" --md "$out/control.md" --check \
+      2> /dev/null; then
+    echo "FAILED: the check passed a closed mesh round a single view, which crosses itself"
+    status=1
+  else
+    echo "The check fails on a closed mesh round a single view, as it must."
+  fi
+  [ $status = 0 ] || echo "FAILED: a run has an error or crossing pairs, or, closed, inward faces or a genus above the reference's"
   exit $status
 fi
 # Two processes side by side (one per core), the clouds split between them.
