@@ -33,7 +33,7 @@ TEST_CASE("a point's side is its own face's outward normal, on both faces of a t
     const SolidStart start = solid_start(PointSpan(ring.points), frame, 3000);
     REQUIRE(start.solid_genus == 1);
     REQUIRE_FALSE(start.surface.triangles.empty());
-    const std::vector<Vec3> sides = sample_sides(PointSpan(ring.points), frame, start.surface);
+    const std::vector<Vec3> sides = sample_sides(PointSpan(ring.points), frame, start.surface, start.reach);
     REQUIRE(sides.size() == ring.points.size());
     std::size_t wall = 0, right = 0;
     for (std::size_t i = 0; i < ring.points.size(); ++i) {
@@ -51,7 +51,7 @@ TEST_CASE("a point's side is its own face's outward normal, on both faces of a t
     INFO(right << " of " << wall << " points on the walls have their face's side");
     CHECK(double(right) >= 0.98 * double(wall));
     // No surface, no sides.
-    CHECK(sample_sides(PointSpan(ring.points), frame, IndexedMesh{}).empty());
+    CHECK(sample_sides(PointSpan(ring.points), frame, IndexedMesh{}, 1.0f).empty());
 }
 
 TEST_CASE("with the samples' sides the two sheets of a thin wall learn without crossing each other") {
@@ -61,7 +61,7 @@ TEST_CASE("with the samples' sides the two sheets of a thin wall learn without c
     for (const Vec3& p : ring.points) bounds.extend(frame(p));
     const SolidStart start = solid_start(PointSpan(ring.points), frame, 3000);
     REQUIRE(start.mesh.has_value());
-    const std::vector<Vec3> sides = sample_sides(PointSpan(ring.points), frame, start.surface);
+    const std::vector<Vec3> sides = sample_sides(PointSpan(ring.points), frame, start.surface, start.reach);
     Parameters params;
     params.target_vertices = 3000;
     params.seed = 2;

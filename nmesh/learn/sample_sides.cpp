@@ -4,7 +4,8 @@
 
 namespace nmesh {
 
-std::vector<Vec3> sample_sides(PointSpan points, const PointTransform& transform, const IndexedMesh& surface) {
+std::vector<Vec3> sample_sides(PointSpan points, const PointTransform& transform, const IndexedMesh& surface,
+                               float reach) {
     std::vector<Vec3> sides;
     if (surface.positions.empty()) return sides;
     sides.resize(points.size());
@@ -13,7 +14,7 @@ std::vector<Vec3> sample_sides(PointSpan points, const PointTransform& transform
         const Vec3 p = transform(points[i]);
         const Vec3 q = surface.positions[grid.nearest(p)];
         const float length = norm(q - p);
-        sides[i] = length > 0.0f ? (q - p) * (1.0f / length) : Vec3{};
+        sides[i] = length > 0.0f && length <= reach ? (q - p) * (1.0f / length) : Vec3{};
     }
     return sides;
 }

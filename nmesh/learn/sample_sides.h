@@ -28,7 +28,11 @@ namespace nmesh {
 
 // Per point of `points` (through `transform`, the space `surface` lies in): the unit direction
 // from the point to its nearest vertex of `surface`, the outer surface of the solid the points
-// wall round; 0 for a point on a vertex. Empty when the surface is. O(V + P) expected.
-std::vector<Vec3> sample_sides(PointSpan points, const PointTransform& transform, const IndexedMesh& surface);
+// wall round; 0 for a point farther from it than `reach` (the offset the surface was built at,
+// and a cell): a point in a tunnel the solid fills (a handle narrower than the offset) has no
+// face that surface runs beyond, and its sample is learnt by any winner. Empty when the surface
+// is. O(V + P) expected.
+std::vector<Vec3> sample_sides(PointSpan points, const PointTransform& transform, const IndexedMesh& surface,
+                               float reach);
 
 }  // namespace nmesh

@@ -485,6 +485,7 @@ SolidStart solid_start(PointSpan points, const PointTransform& transform, std::u
     if (solid.surface.triangles.empty()) return out;  // a genus-0 solid walled round too far out
     Mesh mesh = Mesh::from_indexed(solid.surface);
     out.surface = solid.surface;
+    out.reach = (solid.offset + kSideMargin) * solid.spacing;
     mesh.drop_faces();
     if (!simplify(mesh, start_vertices(target))) return out;
     // Dense slots: the engine's per-vertex arrays are sized by them.

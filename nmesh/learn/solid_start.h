@@ -65,6 +65,13 @@ inline constexpr double kMinInside = 0.02;
 // (+22%), and at 1,000 vertices its Hausdorff distance median was 3.74% against 3.57%.
 inline constexpr float kMaxShapeOffset = 4.0f;
 inline constexpr std::uint64_t kMaxVoxels = std::uint64_t(1) << 24;
+// A point's side (sample_sides.h) is trusted up to this many d beyond the offset from the
+// surface: a point in a concave part lies farther from the offset surface than the offset (the
+// 99th percentile over the points, on the shared and corpus clouds that start from their solid:
+// 0.4-4.3 d beyond it; the rotor ring's median 0.9 d), a point in a tunnel the solid fills up to
+// 18 d (the femur's 99.9th percentile; its 99th, 6 d). Chosen over 3, 4, 5 and 6 d on the femur and the rotor ring, 5,000 vertices, seeds
+// 1-3 (docs/algorithm.md, "Thin walls").
+inline constexpr float kSideMargin = 5.0f;
 
 struct SolidSurface {
     bool walled = false;        // an offset that does not leak was found
@@ -90,6 +97,9 @@ struct SolidStart {
     int solid_genus = -1;       // of the solid, when the points wall one round (one component)
     std::optional<Mesh> mesh;   // the start, dense slots, faces outward
     IndexedMesh surface;        // the solid's outer surface, before its simplification to the start
+    // How far from its nearest vertex of `surface` a point's side is trusted (sample_sides.h):
+    // the offset and kSideMargin d.
+    float reach = 0.0f;
 };
 SolidStart solid_start(PointSpan points, const PointTransform& transform, std::uint32_t target);
 // Half the target, at most kMaxStart: a start coarse enough for the learning to shape, with the

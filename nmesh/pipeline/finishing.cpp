@@ -23,7 +23,7 @@ const PointGrid& cloud_index_of(std::shared_ptr<PointGrid>& cloud_index, PointSp
 bool finish_stage(const Mesh& learnt, std::shared_ptr<PointGrid>& cloud_index, PointSpan cloud,
                   const Normalization& norm, const Parameters& params, Reporter& reporter, Statistics& stats,
                   Mesh& mesh, double progress_from, double progress_share, bool repair, bool last_resort,
-                  const IndexedMesh* solid_surface) {
+                  const SolidStart* solid) {
     const PointGrid& index = cloud_index_of(cloud_index, cloud, norm, params, stats);
     mesh = learnt;
     FinishOptions options;
@@ -33,8 +33,8 @@ bool finish_stage(const Mesh& learnt, std::shared_ptr<PointGrid>& cloud_index, P
     options.off_cloud_last_resort = last_resort;
     const std::vector<Vec3> points = index.indexed_points();
     std::vector<Vec3> sides;
-    if (solid_surface != nullptr && !solid_surface->positions.empty()) {
-        sides = sample_sides(PointSpan(points), PointTransform{}, *solid_surface);
+    if (solid != nullptr && !solid->surface.positions.empty()) {
+        sides = sample_sides(PointSpan(points), PointTransform{}, solid->surface, solid->reach);
         options.point_sides = &sides;
     }
     const FinishReport report =

@@ -4,7 +4,7 @@
 
 #include <memory>
 
-#include "nmesh/indexed_mesh.h"
+#include "nmesh/learn/solid_start.h"
 #include "nmesh/mesh/mesh.h"
 #include "nmesh/parameters.h"
 #include "nmesh/pipeline/normalization.h"
@@ -23,13 +23,12 @@ namespace nmesh::pipeline {
 // Choice: the stage runs without a time limit (FinishOptions::seconds_limit 0), so that the same
 // input, parameters and seed give the same mesh on any machine: a limit in seconds would make the
 // number of repair rounds, and so the mesh, depend on the machine's speed. Its rounds are bounded
-// (FinishOptions::repair_max_rounds). `solid_surface`: the outer surface of the solid the
-// learning started from, or null: the points' sides come from it as in the learning
-// (nmesh/learn/sample_sides.h).
+// (FinishOptions::repair_max_rounds). `solid`: the solid the learning started from, or null: the
+// points' sides come from its surface as in the learning (nmesh/learn/sample_sides.h).
 bool finish_stage(const Mesh& learnt, std::shared_ptr<PointGrid>& cloud_index, PointSpan cloud,
                   const Normalization& norm, const Parameters& params, Reporter& reporter, Statistics& stats,
                   Mesh& mesh, double progress_from = 0.0, double progress_share = 1.0, bool repair = true,
-                  bool last_resort = true, const IndexedMesh* solid_surface = nullptr);
+                  bool last_resort = true, const SolidStart* solid = nullptr);
 
 // The cloud index of the learning, or a new one when the engine has none (it builds one only
 // for the edge swap).

@@ -54,7 +54,7 @@ Result learn_from(PointSpan cloud, const Parameters& params, const Parameters& l
     std::vector<Vec3> sides;
     if (solid.mesh) {
         engine->keep_genus();
-        sides = sample_sides(cloud, norm.transform, solid.surface);
+        sides = sample_sides(cloud, norm.transform, solid.surface, solid.reach);
         engine->set_sample_sides(sides.data());
     }
     engine->set_profiling(callbacks.profile);
@@ -98,7 +98,7 @@ Result learn_from(PointSpan cloud, const Parameters& params, const Parameters& l
             Mesh finished;
             result.stats.finished = finish && finish_stage(learnt, cloud_index, cloud, norm, params, reporter,
                                                            result.stats, finished, 0.0, 1.0, true, last,
-                                                           &solid.surface);
+                                                           &solid);
             if (result.stats.finished) learnt = Mesh();  // freed before the output mesh is built
             result.mesh = (result.stats.finished ? finished : learnt).to_indexed();
         }
