@@ -22,11 +22,9 @@
 // horse and the rocker arm: their sources' genus, ../shared/data/README.md).
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <map>
 #include <sstream>
 #include <string>
@@ -34,67 +32,22 @@
 
 #include "nmesh/cli/arguments.h"
 #include "nmesh/error.h"
-#include "nmesh/geometry/triangle_bvh.h"
 #include "nmesh/io.h"
 #include "nmesh/metrics.h"
 #include "nmesh/reconstruct.h"
-#include "nmesh/util/random.h"
 #include "summary.h"
+#include "surface_distance.h"
 
 namespace {
 
 using nmesh::IndexedMesh;
 using nmesh::Vec3;
 
-double triangle_area(const IndexedMesh& m, std::size_t t) {
-    const auto& f = m.triangles[t];
-    return 0.5 * double(nmesh::norm(nmesh::cross(m.positions[f[1]] - m.positions[f[0]], m.positions[f[2]] - m.positions[f[0]])));
-}
-
-double area(const IndexedMesh& m) {
-    double a = 0.0;
-    for (std::size_t t = 0; t < m.triangles.size(); ++t) a += triangle_area(m, t);
-    return a;
-}
-
-// n points drawn uniformly by area on the mesh (seeded, so every run is measured at the same
-// reference samples).
-std::vector<Vec3> sample_surface(const IndexedMesh& m, std::size_t n, std::uint64_t seed) {
-    std::vector<double> cumulative(m.triangles.size());
-    double total = 0.0;
-    for (std::size_t t = 0; t < m.triangles.size(); ++t) cumulative[t] = total += triangle_area(m, t);
-    nmesh::Random rng(seed);
-    std::vector<Vec3> out;
-    out.reserve(n);
-    for (std::size_t i = 0; i < n && total > 0.0; ++i) {
-        const double r = rng.uniform() * total;
-        const std::size_t t =
-            std::min<std::size_t>(m.triangles.size() - 1,
-                                  std::size_t(std::upper_bound(cumulative.begin(), cumulative.end(), r) - cumulative.begin()));
-        const auto& f = m.triangles[t];
-        const double s = std::sqrt(rng.uniform()), u = rng.uniform();
-        const Vec3 a = m.positions[f[0]], b = m.positions[f[1]], c = m.positions[f[2]];
-        out.push_back(a * float(1.0 - s) + b * float(s * (1.0 - u)) + c * float(s * u));
-    }
-    return out;
-}
-
-struct Distances {
-    double mean = 0.0, max = 0.0;
-};
-
-Distances distances(const std::vector<Vec3>& samples, const IndexedMesh& to) {
-    Distances d;
-    if (samples.empty() || to.triangles.empty()) return d;
-    const nmesh::TriangleBvh bvh(to);
-    for (const Vec3& p : samples) {
-        const double x = std::sqrt(bvh.nearest_squared_distance(p, std::numeric_limits<double>::infinity()));
-        d.mean += x;
-        d.max = std::max(d.max, x);
-    }
-    d.mean /= double(samples.size());
-    return d;
-}
+using nmesh::bench::area;
+using nmesh::bench::Distances;
+using nmesh::bench::distances;
+using nmesh::bench::sample_surface;
+using nmesh::bench::triangle_area;
 
 // The largest piece's share of the area (pieces: triangles joined through shared vertices).
 double largest_piece_share(const IndexedMesh& m) {
