@@ -4,11 +4,12 @@
 #
 # Speed (bench/results/peers-speed.{md,csv}): nmesh's command-line tool and the AFSR program
 # (bench/peers/afsr.cpp) timed in alternation, nmesh then AFSR, PAIRS pairs (default 7; 5 for the
-# large cloud), the whole process from reading the cloud to writing the mesh (bash's clock; peak
-# memory from /usr/bin/time), default settings: the bunny, the horse and the corpus's diplodocus
-# at 30,000 vertices, and a cloud of 150,000 points at 100,000 vertices. That cloud is drawn from
-# the diplodocus's reference mesh (bench/resample_mesh.cpp: uniform by area, seed 7, Gaussian
-# noise of 0.0005 × the diagonal, as the corpus's clouds were made), into build-peers/work/.
+# large cloud), the whole process from reading the cloud to writing the mesh (bash's clock; CPU
+# time and peak memory from /usr/bin/time), default settings: the bunny, the horse and the
+# corpus's diplodocus at 30,000 vertices, and a cloud of 150,000 points at 100,000 vertices. That
+# cloud is drawn from the diplodocus's reference mesh (bench/resample_mesh.cpp: uniform by area,
+# seed 7, Gaussian noise of 0.0005 × the diagonal, as the corpus's clouds were made), into
+# build-peers/work/.
 #
 # Equal budget (bench/results/equal-budget.{md,csv}): at N vertices, nmesh (seeds SEEDS, default
 # 1-3) against AFSR's mesh and Poisson's mesh (depth 9, normals from the 30 nearest points oriented
@@ -98,13 +99,15 @@ load() { cut -d' ' -f1-3 /proc/loadavg; }
 
 # ---- speed ----------------------------------------------------------------------------------
 timed_wall=0
+timed_cpu=0
 timed_mib=0
-timed() {  # COMMAND... : wall seconds (bash's clock) and peak resident MiB of one run
+timed() {  # COMMAND... : wall seconds (bash's clock), CPU seconds and peak resident MiB of one run
   local t0 t1
   t0=$EPOCHREALTIME
-  /usr/bin/time -f %M -o "$work/time.txt" "$@" > /dev/null 2> "$work/run.log" || { cat "$work/run.log" >&2; return 1; }
+  /usr/bin/time -f "%M %U %S" -o "$work/time.txt" "$@" > /dev/null 2> "$work/run.log" || { cat "$work/run.log" >&2; return 1; }
   t1=$EPOCHREALTIME
   timed_wall=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f", b - a }')
+  timed_cpu=$(awk '{ c = $2 + $3 } END { printf "%.2f", c }' "$work/time.txt")
   timed_mib=$(awk '{ m = $1 } END { printf "%.1f", m / 1024 }' "$work/time.txt")
 }
 if [ "$only" != budget ]; then
@@ -117,7 +120,7 @@ if [ "$only" != budget ]; then
     cases+=("$large 100000")
   fi
   raw=$work/peers-speed.csv
-  echo "cloud,points,asked,pair,program,seconds,peak_mib,vertices,faces,closed,boundary_loops,components" > "$raw"
+  echo "cloud,points,asked,pair,program,seconds,cpu_seconds,peak_mib,vertices,faces,closed,boundary_loops,components" > "$raw"
   for c in "${cases[@]}"; do
     read -r cloud asked <<< "$c"
     name=$(basename "$cloud" .ply)
@@ -126,11 +129,11 @@ if [ "$only" != budget ]; then
     if [ "$points" -gt 100000 ] && [ "$pairs" -gt 5 ]; then n=5; fi
     for ((i = 1; i <= n; i++)); do
       timed "$nmesh" reconstruct "$cloud" -o "$work/${name}_nmesh.ply" --vertices "$asked" --quiet
-      echo "$name,$points,$asked,$i,nmesh,$timed_wall,$timed_mib,$(mesh_summary "$work/${name}_nmesh.ply")" >> "$raw"
-      echo "  $name pair $i: nmesh $timed_wall s, $timed_mib MiB"
+      echo "$name,$points,$asked,$i,nmesh,$timed_wall,$timed_cpu,$timed_mib,$(mesh_summary "$work/${name}_nmesh.ply")" >> "$raw"
+      echo "  $name pair $i: nmesh $timed_wall s ($timed_cpu s CPU), $timed_mib MiB"
       timed "$afsr" "$cloud" "$work/${name}_afsr.ply"
-      echo "$name,$points,$asked,$i,afsr,$timed_wall,$timed_mib,$(mesh_summary "$work/${name}_afsr.ply")" >> "$raw"
-      echo "  $name pair $i: AFSR  $timed_wall s, $timed_mib MiB"
+      echo "$name,$points,$asked,$i,afsr,$timed_wall,$timed_cpu,$timed_mib,$(mesh_summary "$work/${name}_afsr.ply")" >> "$raw"
+      echo "  $name pair $i: AFSR  $timed_wall s ($timed_cpu s CPU), $timed_mib MiB"
     done
   done
   speed_load_end=$(load)
@@ -138,7 +141,7 @@ if [ "$only" != budget ]; then
   {
     echo "# Speed: nmesh against the advancing front (CGAL's AFSR)"
     echo
-    echo "Command: \`$command_line\` (Release). $(date -u +%Y-%m-%d), commit $(git rev-parse --short HEAD)."
+    echo "Command: \`$command_line\` (Release). $(date -u +%Y-%m-%d), nmesh at commit $(git log -1 --format=%h -- nmesh) (its last change)."
     echo "Machine: $(sed -n 's/^model name\s*: //p' /proc/cpuinfo | head -n 1), $(getconf _NPROCESSORS_ONLN) cores; load average"
     echo "$speed_load_start at the start, $speed_load_end at the end (1, 5, 15 minutes: above 1, the machine"
     echo "was shared with other work, and the alternation keeps both programs under the same load)."
@@ -146,7 +149,8 @@ if [ "$only" != budget ]; then
     echo "Each pair runs nmesh's command-line tool (\`nmesh reconstruct CLOUD -o OUT.ply --vertices N --quiet\`,"
     echo "default settings, seed 1) and then the AFSR program (\`bench/peers/afsr.cpp\`: CGAL 5.5's"
     echo "\`advancing_front_surface_reconstruction\`, default parameters), each timed as a whole process from"
-    echo "reading the cloud to writing the binary PLY. AFSR's output keeps (about) every point as a vertex;"
+    echo "reading the cloud to writing the binary PLY: wall time by bash's clock, CPU time (user + system)"
+    echo "and peak memory by /usr/bin/time. AFSR's output keeps (about) every point as a vertex;"
     echo "nmesh's has exactly N. \`diplodocus_150k\`: 150,000 points drawn from the corpus's diplodocus"
     echo "reference mesh by \`bench/resample_mesh.cpp\` (uniform by area, seed 7, Gaussian noise of"
     echo "0.0005 × the diagonal, as the corpus's clouds were made). Runs: \`peers-speed.csv\`."
@@ -212,7 +216,7 @@ if [ "$only" != speed ]; then
   {
     echo "# Equal budget: nmesh against standard pipelines at the same vertex count"
     echo
-    echo "Command: \`$command_line\` (Release). $(date -u +%Y-%m-%d), commit $(git rev-parse --short HEAD)."
+    echo "Command: \`$command_line\` (Release). $(date -u +%Y-%m-%d), nmesh at commit $(git log -1 --format=%h -- nmesh) (its last change)."
     echo "Seeds of nmesh: $seeds. Every mesh: \`bench/results/equal-budget.csv\`."
     echo
     echo "At N vertices: nmesh (\`nmesh reconstruct CLOUD -o OUT.ply --vertices N --seed S --quiet\`, default"

@@ -27,8 +27,8 @@ def groups(rows, *keys):
 def speed(rows):
     print("| cloud | points | nmesh vertices | AFSR vertices (facets) | pairs | nmesh s, median (min-max) | "
           "AFSR s, median (min-max) | nmesh / AFSR: ratio of medians | per pair, median (min-max) | "
-          "peak MiB nmesh / AFSR | AFSR output |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+          "CPU s nmesh / AFSR (medians) | CPU ratio | peak MiB nmesh / AFSR | AFSR output |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
     summary = []
     for (cloud, points, asked), g in groups(rows, "cloud", "points", "asked").items():
         by = groups(g, "program")
@@ -38,6 +38,8 @@ def speed(rows):
         pairs = {r["pair"]: float(r["seconds"]) for r in af}
         ratios = [float(r["seconds"]) / pairs[r["pair"]] for r in nm if r["pair"] in pairs]
         m_nm, m_af = statistics.median(t_nm), statistics.median(t_af)
+        c_nm = statistics.median(float(r["cpu_seconds"]) for r in nm)
+        c_af = statistics.median(float(r["cpu_seconds"]) for r in af)
         mem_nm = max(float(r["peak_mib"]) for r in nm)
         mem_af = max(float(r["peak_mib"]) for r in af)
         a = af[-1]
@@ -47,10 +49,11 @@ def speed(rows):
               f"({int(a['faces']):,}) | {len(ratios)} | {m_nm:.2f} ({min(t_nm):.2f}-{max(t_nm):.2f}) | "
               f"{m_af:.2f} ({min(t_af):.2f}-{max(t_af):.2f}) | {m_nm / m_af:.2f} | "
               f"{statistics.median(ratios):.2f} ({min(ratios):.2f}-{max(ratios):.2f}) | "
-              f"{mem_nm:.0f} / {mem_af:.0f} | {shape} |")
-        summary.append(f"{cloud} at {int(asked):,} vertices {m_nm / m_af:.2f}")
+              f"{c_nm:.2f} / {c_af:.2f} | {c_nm / c_af:.2f} | {mem_nm:.0f} / {mem_af:.0f} | {shape} |")
+        summary.append(f"{cloud} at {int(asked):,} vertices {m_nm / m_af:.2f} ({c_nm / c_af:.2f})")
     print()
-    print("nmesh's time over AFSR's (ratio of the medians): " + "; ".join(summary) + ".")
+    print("nmesh's time over AFSR's, ratio of the median wall times (of the median CPU times): "
+          + "; ".join(summary) + ".")
 
 
 def fmt(x):
