@@ -111,6 +111,13 @@ def budget(rows):
           f"5,000 and 30,000, every corpus row): **{peer_pass} of {peer_rows}**; at most 1% of the triangles with "
           f"a smallest angle under 10° (every row, the worst seed): **{angle_pass} of {angle_rows}** "
           f"(both peers: {peer_angle_pass} of {angle_rows}).")
+    def sound(method):  # closed, a manifold, no crossing pair: (meshes, of)
+        meshes = [r for r in rows if r["method"] == method]
+        ok = sum(r["closed"] == "1" and r["manifold"] == "1" and r["crossing_pairs"] == "0" for r in meshes)
+        return f"{ok} of {len(meshes)}"
+
+    print(f"Closed manifolds without crossing triangles: nmesh {sound('nmesh')} meshes, AFSR + QD "
+          f"{sound('afsr_qd')}, Poisson + QD {sound('poisson_qd')}, reference + QD {sound('reference_qd')}.")
     ordered = sorted(r for _, _, r in ratios)
     print(f"nmesh's chamfer over the better peer's: median {statistics.median(ordered):.2f}, "
           f"from {ordered[0]:.2f} to {ordered[-1]:.2f}.")
