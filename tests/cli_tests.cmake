@@ -92,7 +92,7 @@ endif()
 expect(index_points 0 "wrote .*sampled.ply: 1000 vertices"
   ${NMESH} reconstruct ${DATA} -o ${WORK}/sampled.ply --vertices 1000 --index-points 2 --stats ${WORK}/sampled.json)
 file(READ ${WORK}/sampled.json sampled)
-if(NOT sampled MATCHES "\"index_points_per_vertex\": 2}.*\"indexed_points\": 2000,")
+if(NOT sampled MATCHES "\"index_points_per_vertex\": 2, .*\"indexed_points\": 2000,")
   message(SEND_ERROR "stats.json: --index-points 2 did not index 2000 points")
   math(EXPR failures "${failures} + 1")
 endif()
@@ -114,6 +114,20 @@ if(NOT fitted MATCHES "\"solid_start\": false.*\"fit_rounds\": 2," OR dm_default
   message(SEND_ERROR "--fit-rounds 2: DM(X,T) ${dm_fitted} against ${dm_default} without the fit")
   math(EXPR failures "${failures} + 1")
 endif()
+# --threads: the same mesh, byte for byte, from one thread and from three; recorded in the
+# parameters; a count out of range is a usage error.
+expect(threads_one 0 "" ${NMESH} reconstruct ${DATA} -o ${WORK}/threads1.ply --vertices 1000 --threads 1 --quiet)
+expect(threads_three 0 "" ${NMESH} reconstruct ${DATA} -o ${WORK}/threads3.ply --vertices 1000 --threads 3 --quiet
+  --stats ${WORK}/threads3.json)
+file(READ ${WORK}/threads1.ply threads1 HEX)
+file(READ ${WORK}/threads3.ply threads3 HEX)
+file(READ ${WORK}/threads3.json threads3_stats)
+if(NOT threads1 STREQUAL threads3 OR NOT threads3_stats MATCHES "\"threads\": 3}")
+  message(SEND_ERROR "--threads 1 and --threads 3 wrote different meshes, or the stats lack the count")
+  math(EXPR failures "${failures} + 1")
+endif()
+expect(bad_threads 2 "invalid parameter threads: must be in \\[0, 1024\\]"
+  ${NMESH} reconstruct ${DATA} -o ${WORK}/x.ply --threads 1025)
 expect(quiet 0 "^$" ${NMESH} reconstruct ${DATA} -o ${WORK}/quiet.obj --vertices 200 --quiet)
 expect(eval_json 0 "\"closed\": true.*\"genus\": 0" ${NMESH} eval ${DATA} ${WORK}/mesh.ply --json)
 expect(eval_text 0 "dm_x_t" ${NMESH} eval ${DATA} ${WORK}/quiet.obj)

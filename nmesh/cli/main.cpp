@@ -72,6 +72,8 @@ constexpr const char* kReconstructUsage =
     "                         finishing stage (default 64; 0: every point)\n"
     "  --settle X             X * n iterations without topology changes at the end (default 0)\n"
     "  --seed S               random seed; the same seed gives the same mesh (default 1)\n"
+    "  --threads N            threads for the work beside the learning (default 0: the machine's\n"
+    "                         cores); the same mesh for every N\n"
     "  --snapshots N1,N2,...  also write the mesh when it reaches these sizes (OUTPUT_<N>v.ext)\n"
     "  --stats FILE.json      write parameters, statistics and quality metrics as JSON\n"
     "  --ascii                write PLY as ASCII instead of binary\n"
@@ -169,7 +171,8 @@ int run_reconstruct(int argc, char** argv) {
         argc, argv, 2,
         {"--no-edge-swap", "--no-fold-guard", "--no-solid-start", "--no-finish", "--quiet", "--ascii", "--save-on-interrupt"},
         {"-o", "--output", "--vertices", "--alpha-w", "--alpha-n", "--alpha", "--cvs", "--cec", "--seed", "--snapshots",
-         "--stats", "--settle", "--finish-rounds", "--fit-rounds", "--index-points", "--topology", "--min-hole"});
+         "--stats", "--settle", "--finish-rounds", "--fit-rounds", "--index-points", "--topology", "--min-hole",
+         "--threads"});
     if (args.positional().size() != 1) throw UsageError("reconstruct takes one INPUT file");
     const std::string input = args.positional()[0];
     const std::string output = args.has("-o") ? args.text("-o") : args.text("--output");
@@ -213,6 +216,7 @@ int run_reconstruct(int argc, char** argv) {
     p.finish_rounds = bounded_count("--finish-rounds", p.finish_rounds);
     p.fit_rounds = bounded_count("--fit-rounds", p.fit_rounds);
     p.index_points_per_vertex = bounded_count("--index-points", p.index_points_per_vertex);
+    p.threads = bounded_count("--threads", p.threads);
     try {
         if (args.has("--topology")) p.topology = parse_topology(args.text("--topology").c_str());
         p.validate();

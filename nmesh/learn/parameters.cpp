@@ -4,6 +4,7 @@
 
 #include "nmesh/error.h"
 #include "nmesh/learn/neural_mesh.h"
+#include "nmesh/util/parallel.h"
 
 namespace nmesh {
 
@@ -39,6 +40,9 @@ void Parameters::validate() const {
     if (topology != Topology::sphere && topology != Topology::closed && topology != Topology::open)
         bad("topology", "must be Topology::sphere, closed or open");
     if (fit_rounds > 0 && !finish) bad("fit_rounds", "needs the finishing stage (finish), which is off");
+    if (threads > kMaxThreads)
+        bad("threads", "must be in [0, " + std::to_string(kMaxThreads) + "] (0: the machine's cores), got " +
+                           std::to_string(threads));
     if (!(min_hole >= 0.0f && min_hole <= 1000.0f)) bad("min_hole", "must be in [0, 1000], got " + std::to_string(min_hole));
 }
 

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <string>
 
+#include "nmesh/util/parallel.h"
+
 namespace nmesh {
 
 // `text` as a JSON string literal: quotes, backslashes and control characters escaped; other
@@ -59,7 +61,8 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << ", \"solid_start\": " << (p.solid_start ? "true" : "false") << ", \"topology\": \"" << topology_name(p.topology)
       << "\", \"settle\": " << p.settle << ", \"finish\": " << (p.finish ? "true" : "false")
       << ", \"finish_rounds\": " << p.finish_rounds << ", \"fit_rounds\": " << p.fit_rounds << ", \"min_hole\": " << p.min_hole
-      << ", \"index_points_per_vertex\": " << p.index_points_per_vertex << "},\n"
+      << ", \"index_points_per_vertex\": " << p.index_points_per_vertex
+      << ", \"threads\": " << resolve_threads(p.threads) << "},\n"
       << "  \"vertices\": " << r.mesh.positions.size() << ",\n"
       << "  \"faces\": " << r.mesh.triangles.size() << ",\n"
       << "  \"iterations\": " << s.iterations << ",\n"

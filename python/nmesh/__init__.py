@@ -196,6 +196,7 @@ def reconstruct(
     fit_rounds: int = 0,
     settle: float = 0.0,
     index_points_per_vertex: int = 64,
+    threads: int = 0,
     metrics: bool = True,
 ) -> Reconstruction:
     """Learns a triangle mesh of exactly `vertices` vertices from the points (closed, unless
@@ -233,6 +234,8 @@ def reconstruct(
     finish_rounds, fit_rounds: the finishing stage's regularisation and centroid-fit rounds.
     settle: settle * n iterations without topology changes once the target size is reached.
     index_points_per_vertex: cloud points indexed per target vertex (0: all of them).
+    threads: threads for the work beside the learning; 0, the machine's cores, or 1 to 1024.
+        The same mesh for every count.
     metrics: measure the mesh against the whole cloud for stats["metrics"], as the command-line
         tool does for --stats: about 0.25 s on the 36k-point bunny whatever the mesh size, which
         is most of the time of a small reconstruction (0.07 s at 500 vertices). False leaves
@@ -274,6 +277,7 @@ def reconstruct(
         finish_rounds=_count("finish_rounds", finish_rounds),
         fit_rounds=_count("fit_rounds", fit_rounds),
         index_points_per_vertex=_count("index_points_per_vertex", index_points_per_vertex),
+        threads=_count("threads", threads),
         progress=progress,
         metrics=_flag("metrics", metrics),
     )
