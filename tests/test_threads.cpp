@@ -1,5 +1,5 @@
 // Threads (Parameters::threads): the parallel helper's chunks, its exceptions and its inline
-// single thread; the parameter's range.
+// single thread; the parameter's range; the output check's counts for any thread count.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -14,11 +14,16 @@
 #include <vector>
 
 #include "cloud_fixtures.h"
+#include "mesh_fixtures.h"
 #include "nmesh/error.h"
+#include "nmesh/geometry/triangle_bvh.h"
+#include "nmesh/geometry/triangle_intersection.h"
+#include "nmesh/mesh/orientation.h"
 #include "nmesh/reconstruct.h"
 #include "nmesh/util/parallel.h"
 
 using namespace nmesh;
+using nmesh::test::icosphere;
 using nmesh::test::sphere_cloud;
 
 TEST_CASE("for_chunks calls each fixed chunk once, whatever the thread count") {
@@ -130,4 +135,24 @@ TEST_CASE("threads out of range are refused, naming the parameter") {
     }
     p.threads = kMaxThreads;
     CHECK_NOTHROW(p.validate());
+}
+
+TEST_CASE("the output check's counts and the inward flags are the same for any thread count") {
+    // An icosphere with half its faces reversed (inward faces) and a vertex pushed through the
+    // opposite side (crossing pairs).
+    IndexedMesh mesh = icosphere(4);
+    for (auto& t : mesh.triangles)
+        if (mesh.positions[t[0]].z > 0.5f) std::swap(t[1], t[2]);
+    mesh.positions[0] = mesh.positions[0] * -1.5f;
+    const TriangleBvh bvh(mesh);
+    const std::vector<std::uint8_t> flags = inward_face_flags(mesh, bvh, 1);
+    const std::size_t pairs = self_intersecting_pairs(mesh).size();
+    CHECK(pairs > 0);
+    CHECK(std::count(flags.begin(), flags.end(), std::uint8_t(1)) > 0);
+    for (const std::uint32_t threads : {1u, 2u, 4u, 0u}) {
+        CAPTURE(threads);
+        CHECK(inward_face_flags(mesh, bvh, threads) == flags);
+        CHECK(inward_faces(mesh, bvh, threads) == std::size_t(std::count(flags.begin(), flags.end(), std::uint8_t(1))));
+        CHECK(count_self_intersections(mesh, threads) == pairs);
+    }
 }

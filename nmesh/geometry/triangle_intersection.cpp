@@ -6,6 +6,7 @@
 
 #include "nmesh/error.h"
 #include "nmesh/geometry/exact_predicates.h"
+#include "nmesh/util/parallel.h"
 
 namespace nmesh {
 
@@ -223,8 +224,7 @@ bool boxes_overlap(const FaceBox& a, const FaceBox& b) {
     return true;
 }
 
-// Calls visit(s, t) for every intersecting pair of faces s < t, in increasing order of (s, t),
-// until visit returns false.
+// The intersecting pairs of a mesh's faces, face by face.
 //
 // The non-degenerate faces are binned by their bounding boxes into a uniform grid of cubic cells
 // as wide as the mean largest box side (coarser if that would make more than about 8 cells per
@@ -232,15 +232,37 @@ bool boxes_overlap(const FaceBox& a, const FaceBox& b) {
 // looks at the faces t > s in the cells its box covers. Closed boxes that overlap share the cell
 // that holds the lower corner of their overlap: the cell of a coordinate is monotonic in it, so
 // that cell is, axis by axis, the larger of the two boxes' first cells. A pair is tested only in
-// that cell, hence once.
-template <class Visit>
-void for_each_intersecting_pair(const IndexedMesh& mesh, Visit&& visit) {
+// that cell, hence once. The faces' searches are independent of each other (several threads may
+// search at once).
+class IntersectingPairs {
+public:
+    explicit IntersectingPairs(const IndexedMesh& mesh);
+    // The number of faces tested (the non-degenerate ones with finite corners).
+    std::size_t size() const { return faces_.size(); }
+    // The faces t > s (s = the i-th face tested) that intersect s, increasing, into `found`.
+    void partners(std::size_t i, std::vector<std::uint32_t>& found) const;
+    // The mesh's index of the i-th face tested.
+    std::uint32_t face(std::size_t i) const { return faces_[i]; }
+
+private:
+    const IndexedMesh& mesh_;
+    std::vector<std::uint32_t> faces_;  // the faces tested, increasing
+    std::vector<FaceBox> boxes_;
+    int dim_[3] = {0, 0, 0};
+    std::vector<std::size_t> start_;
+    std::vector<std::uint32_t> entries_;
+    std::size_t cell_id(int x, int y, int z) const {
+        return (std::size_t(z) * std::size_t(dim_[1]) + std::size_t(y)) * std::size_t(dim_[0]) + std::size_t(x);
+    }
+};
+
+IntersectingPairs::IntersectingPairs(const IndexedMesh& mesh) : mesh_(mesh) {
     const std::size_t face_count = mesh.triangles.size();
     const std::size_t vertex_count = mesh.positions.size();
     if (face_count > std::size_t(UINT32_MAX)) throw InputError("self_intersecting_pairs: more than 2^32 - 1 triangles");
     const Vec3* positions = mesh.positions.data();
 
-    std::vector<std::uint32_t> faces;  // the faces tested, increasing
+    std::vector<std::uint32_t>& faces = faces_;
     faces.reserve(face_count);
     for (std::size_t f = 0; f < face_count; ++f) {
         const Face& t = mesh.triangles[f];
@@ -255,9 +277,13 @@ void for_each_intersecting_pair(const IndexedMesh& mesh, Visit&& visit) {
         if (finite && !face_degenerate(positions, t)) faces.push_back(std::uint32_t(f));
     }
     const std::size_t n = faces.size();
-    if (n < 2) return;
+    if (n < 2) {
+        faces.clear();  // nothing to pair
+        return;
+    }
 
-    std::vector<FaceBox> boxes(n);
+    std::vector<FaceBox>& boxes = boxes_;
+    boxes.resize(n);
     double lower[3], upper[3], side_sum = 0.0;
     for (int k = 0; k < 3; ++k) {
         lower[k] = HUGE_VAL;
@@ -291,19 +317,18 @@ void for_each_intersecting_pair(const IndexedMesh& mesh, Visit&& visit) {
         if (cells <= max_cells) break;
         width *= std::max(1.01, std::cbrt(cells / max_cells));
     }
-    const int dim[3] = {int(dims[0]), int(dims[1]), int(dims[2])};
+    int* const dim = dim_;
+    for (int k = 0; k < 3; ++k) dim[k] = int(dims[k]);
     const double inverse_width = 1.0 / width;
     const auto cell_of = [&](float x, int k) {
         const double c = std::floor((double(x) - lower[k]) * inverse_width);
         return int(std::clamp(c, 0.0, double(dim[k] - 1)));
     };
-    const auto cell_id = [&](int x, int y, int z) {
-        return (std::size_t(z) * std::size_t(dim[1]) + std::size_t(y)) * std::size_t(dim[0]) + std::size_t(x);
-    };
 
     // Counting sort of (cell, face) entries by cell, faces increasing within a cell.
     const std::size_t cell_count = std::size_t(dim[0]) * std::size_t(dim[1]) * std::size_t(dim[2]);
-    std::vector<std::size_t> start(cell_count + 1, 0);
+    std::vector<std::size_t>& start = start_;
+    start.assign(cell_count + 1, 0);
     for (FaceBox& b : boxes) {
         for (int k = 0; k < 3; ++k) {
             b.cell_lo[k] = cell_of(b.lo[k], k);
@@ -314,7 +339,8 @@ void for_each_intersecting_pair(const IndexedMesh& mesh, Visit&& visit) {
                 for (int x = b.cell_lo[0]; x <= b.cell_hi[0]; ++x) ++start[cell_id(x, y, z) + 1];
     }
     for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
-    std::vector<std::uint32_t> entries(start.back());
+    std::vector<std::uint32_t>& entries = entries_;
+    entries.resize(start.back());
     {
         std::vector<std::size_t> next(start.begin(), start.end() - 1);
         for (std::size_t i = 0; i < n; ++i) {
@@ -325,32 +351,29 @@ void for_each_intersecting_pair(const IndexedMesh& mesh, Visit&& visit) {
                         entries[next[cell_id(x, y, z)]++] = std::uint32_t(i);
         }
     }
+}
 
-    const std::uint32_t* const listed = entries.data();
-    std::vector<std::uint32_t> found;
-    for (std::size_t i = 0; i < n; ++i) {
-        const FaceBox& a = boxes[i];
-        const Face& t = mesh.triangles[faces[i]];
-        found.clear();
-        for (int z = a.cell_lo[2]; z <= a.cell_hi[2]; ++z)
-            for (int y = a.cell_lo[1]; y <= a.cell_hi[1]; ++y)
-                for (int x = a.cell_lo[0]; x <= a.cell_hi[0]; ++x) {
-                    const std::size_t c = cell_id(x, y, z);
-                    const std::uint32_t* const end = listed + start[c + 1];
-                    for (const std::uint32_t* e = std::upper_bound(listed + start[c], end, std::uint32_t(i)); e != end;
-                         ++e) {
-                        const FaceBox& b = boxes[*e];
-                        if (std::max(a.cell_lo[0], b.cell_lo[0]) != x || std::max(a.cell_lo[1], b.cell_lo[1]) != y ||
-                            std::max(a.cell_lo[2], b.cell_lo[2]) != z)
-                            continue;
-                        if (!boxes_overlap(a, b)) continue;
-                        if (nondegenerate_faces_intersect(positions, t, mesh.triangles[faces[*e]])) found.push_back(*e);
-                    }
+void IntersectingPairs::partners(std::size_t i, std::vector<std::uint32_t>& found) const {
+    const std::uint32_t* const listed = entries_.data();
+    const FaceBox& a = boxes_[i];
+    const Face& t = mesh_.triangles[faces_[i]];
+    found.clear();
+    for (int z = a.cell_lo[2]; z <= a.cell_hi[2]; ++z)
+        for (int y = a.cell_lo[1]; y <= a.cell_hi[1]; ++y)
+            for (int x = a.cell_lo[0]; x <= a.cell_hi[0]; ++x) {
+                const std::size_t c = cell_id(x, y, z);
+                const std::uint32_t* const end = listed + start_[c + 1];
+                for (const std::uint32_t* e = std::upper_bound(listed + start_[c], end, std::uint32_t(i)); e != end; ++e) {
+                    const FaceBox& b = boxes_[*e];
+                    if (std::max(a.cell_lo[0], b.cell_lo[0]) != x || std::max(a.cell_lo[1], b.cell_lo[1]) != y ||
+                        std::max(a.cell_lo[2], b.cell_lo[2]) != z)
+                        continue;
+                    if (!boxes_overlap(a, b)) continue;
+                    if (nondegenerate_faces_intersect(mesh_.positions.data(), t, mesh_.triangles[faces_[*e]]))
+                        found.push_back(*e);
                 }
-        std::sort(found.begin(), found.end());
-        for (std::uint32_t j : found)
-            if (!visit(faces[i], faces[j])) return;
-    }
+            }
+    std::sort(found.begin(), found.end());
 }
 
 }  // namespace
@@ -392,20 +415,35 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(con
                                                                              std::size_t max_pairs) {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
     if (max_pairs == 0) return pairs;
-    for_each_intersecting_pair(mesh, [&](std::uint32_t s, std::uint32_t t) {
-        pairs.emplace_back(s, t);
-        return pairs.size() < max_pairs;
-    });
+    const IntersectingPairs search(mesh);
+    std::vector<std::uint32_t> found;
+    for (std::size_t i = 0; i < search.size(); ++i) {
+        search.partners(i, found);
+        for (const std::uint32_t j : found) {
+            pairs.emplace_back(search.face(i), search.face(j));
+            if (pairs.size() >= max_pairs) return pairs;
+        }
+    }
     return pairs;
 }
 
-std::size_t count_self_intersections(const IndexedMesh& mesh) {
-    std::size_t count = 0;
-    for_each_intersecting_pair(mesh, [&](std::uint32_t, std::uint32_t) {
-        ++count;
-        return true;
+std::size_t count_self_intersections(const IndexedMesh& mesh, std::uint32_t threads) {
+    const IntersectingPairs search(mesh);
+    // Counts per chunk of faces, added up in chunk order (integers: any order gives the same sum).
+    constexpr std::size_t kChunk = 512;
+    std::vector<std::size_t> counts((search.size() + kChunk - 1) / kChunk, 0);
+    for_chunks(search.size(), kChunk, threads, [&](std::size_t begin, std::size_t end) {
+        std::vector<std::uint32_t> found;
+        std::size_t count = 0;
+        for (std::size_t i = begin; i < end; ++i) {
+            search.partners(i, found);
+            count += found.size();
+        }
+        counts[begin / kChunk] = count;
     });
-    return count;
+    std::size_t total = 0;
+    for (const std::size_t c : counts) total += c;
+    return total;
 }
 
 }  // namespace nmesh

@@ -51,7 +51,8 @@ bool faces_intersect(const Vec3* positions, std::array<std::uint32_t, 3> t, std:
 std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs(const IndexedMesh& mesh,
                                                                              std::size_t max_pairs = SIZE_MAX);
 
-// The number of pairs self_intersecting_pairs would return without a limit.
-std::size_t count_self_intersections(const IndexedMesh& mesh);
+// The number of pairs self_intersecting_pairs would return without a limit. The faces' searches
+// run on `threads` threads (0: the machine's cores); the count is the same for any number.
+std::size_t count_self_intersections(const IndexedMesh& mesh, std::uint32_t threads = 1);
 
 }  // namespace nmesh

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "nmesh/mesh/mesh_pieces.h"
+#include "nmesh/util/parallel.h"
 
 namespace nmesh {
 namespace {
@@ -39,6 +40,32 @@ int crossing(const Point3& p, const Point3& a, const Point3& b, const Point3& c)
     return n.x > 0.0 ? 1 : -1;
 }
 
+// Whether face i points inward (inward_face_flags).
+std::uint8_t points_inward(const IndexedMesh& mesh, const TriangleBvh& bvh, std::size_t i) {
+    const auto& t = mesh.triangles[i];
+    const Point3 a = to_double(mesh.positions[t[0]]), b = to_double(mesh.positions[t[1]]),
+                 c = to_double(mesh.positions[t[2]]);
+    const Point3 n = cross3(minus(b, a), minus(c, a));
+    const double len = std::sqrt(dot3(n, n));
+    if (!(len > 0.0)) return 0;
+    const double edge = std::sqrt(
+        std::max({dot3(minus(b, a), minus(b, a)), dot3(minus(c, b), minus(c, b)), dot3(minus(a, c), minus(a, c))}));
+    const double off = 1e-3 * edge / len;
+    const Point3 p{(a.x + b.x + c.x) / 3.0 + n.x * off, (a.y + b.y + c.y) / 3.0 + n.y * off,
+                   (a.z + b.z + c.z) / 3.0 + n.z * off};
+    // The query point rounded to float, so that the hierarchy's float boxes and the crossing
+    // test see the same point.
+    const Vec3 origin(float(p.x), float(p.y), float(p.z));
+    const Point3 q = to_double(origin);
+    int winding = 0;
+    bvh.for_each_on_ray_x(origin, [&](std::uint32_t f) {
+        const auto& u = mesh.triangles[f];
+        winding += crossing(q, to_double(mesh.positions[u[0]]), to_double(mesh.positions[u[1]]),
+                            to_double(mesh.positions[u[2]]));
+    });
+    return std::uint8_t(winding != 0);
+}
+
 }  // namespace
 
 double signed_volume(const IndexedMesh& mesh) {
@@ -57,37 +84,16 @@ bool orient_outward(IndexedMesh& mesh) {
     return true;
 }
 
-std::vector<std::uint8_t> inward_face_flags(const IndexedMesh& mesh, const TriangleBvh& bvh) {
+std::vector<std::uint8_t> inward_face_flags(const IndexedMesh& mesh, const TriangleBvh& bvh, std::uint32_t threads) {
     std::vector<std::uint8_t> inward(mesh.triangles.size(), 0);
-    for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-        const auto& t = mesh.triangles[i];
-        const Point3 a = to_double(mesh.positions[t[0]]), b = to_double(mesh.positions[t[1]]),
-                     c = to_double(mesh.positions[t[2]]);
-        const Point3 n = cross3(minus(b, a), minus(c, a));
-        const double len = std::sqrt(dot3(n, n));
-        if (!(len > 0.0)) continue;
-        const double edge = std::sqrt(
-            std::max({dot3(minus(b, a), minus(b, a)), dot3(minus(c, b), minus(c, b)), dot3(minus(a, c), minus(a, c))}));
-        const double off = 1e-3 * edge / len;
-        const Point3 p{(a.x + b.x + c.x) / 3.0 + n.x * off, (a.y + b.y + c.y) / 3.0 + n.y * off,
-                       (a.z + b.z + c.z) / 3.0 + n.z * off};
-        // The query point rounded to float, so that the hierarchy's float boxes and the crossing
-        // test see the same point.
-        const Vec3 origin(float(p.x), float(p.y), float(p.z));
-        const Point3 q = to_double(origin);
-        int winding = 0;
-        bvh.for_each_on_ray_x(origin, [&](std::uint32_t f) {
-            const auto& u = mesh.triangles[f];
-            winding += crossing(q, to_double(mesh.positions[u[0]]), to_double(mesh.positions[u[1]]),
-                                to_double(mesh.positions[u[2]]));
-        });
-        inward[i] = std::uint8_t(winding != 0);
-    }
+    for_chunks(mesh.triangles.size(), 1024, threads, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) inward[i] = points_inward(mesh, bvh, i);
+    });
     return inward;
 }
 
-std::size_t inward_faces(const IndexedMesh& mesh, const TriangleBvh& bvh) {
-    const std::vector<std::uint8_t> inward = inward_face_flags(mesh, bvh);
+std::size_t inward_faces(const IndexedMesh& mesh, const TriangleBvh& bvh, std::uint32_t threads) {
+    const std::vector<std::uint8_t> inward = inward_face_flags(mesh, bvh, threads);
     return std::size_t(std::count(inward.begin(), inward.end(), std::uint8_t(1)));
 }
 

@@ -20,10 +20,11 @@ double signed_volume(const IndexedMesh& mesh);
 // along its normal (a thousandth of its longest edge away) lies inside the surface, its winding
 // number nonzero. The winding number is counted along a ray in +x, each crossed triangle adding
 // the sign of its normal's x component, through `bvh` (a hierarchy over `mesh`): O(log F) per
-// face. Meaningful for closed meshes; a face on a fold or in a tangle may count either way.
-std::size_t inward_faces(const IndexedMesh& mesh, const TriangleBvh& bvh);
+// face. Meaningful for closed meshes; a face on a fold or in a tangle may count either way. The
+// faces are tested on `threads` threads (0: the machine's cores), with the same answer for any number.
+std::size_t inward_faces(const IndexedMesh& mesh, const TriangleBvh& bvh, std::uint32_t threads = 1);
 // The same test face by face: 1 for a face that points inward, 0 otherwise.
-std::vector<std::uint8_t> inward_face_flags(const IndexedMesh& mesh, const TriangleBvh& bvh);
+std::vector<std::uint8_t> inward_face_flags(const IndexedMesh& mesh, const TriangleBvh& bvh, std::uint32_t threads = 1);
 
 // The most faces in one edge-connected patch of the `flagged` ones (one flag per triangle): for
 // the inward faces, a fold turns a few triangles over, a twist (part of the surface inside out)

@@ -109,7 +109,7 @@ Result learn_from(PointSpan cloud, const Parameters& params, const Parameters& l
         result.stats.seconds = learnt_at - finish_seconds;
         finish_seconds += finishing;
         result.stats.seconds_finish = finish_seconds;
-        check_output(result);
+        check_output(result, params.threads);
         result.stats.output_retries = checkpoints.counts.output_retries;
         const bool valid = result.stats.crossing_pairs == 0 && result.stats.inward_faces == 0;
         if (valid || result.cancelled || attempt >= output_retries || !checkpoints.on || !checkpoints.last) break;
