@@ -1,11 +1,13 @@
 // Threads (Parameters::threads): the parallel helper's chunks, its exceptions and its inline
-// single thread; the parameter's range; the output check's counts for any thread count.
+// single thread; the parameter's range; the output check's counts, the solid's reading and the
+// samples' sides, the same for any thread count.
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <cstring>
 #include <mutex>
 #include <set>
 #include <stdexcept>
@@ -18,13 +20,30 @@
 #include "nmesh/error.h"
 #include "nmesh/geometry/triangle_bvh.h"
 #include "nmesh/geometry/triangle_intersection.h"
+#include "nmesh/learn/sample_sides.h"
+#include "nmesh/learn/solid_start.h"
 #include "nmesh/mesh/orientation.h"
 #include "nmesh/reconstruct.h"
 #include "nmesh/util/parallel.h"
 
 using namespace nmesh;
+using nmesh::test::bundled_bunny;
 using nmesh::test::icosphere;
 using nmesh::test::sphere_cloud;
+using nmesh::test::torus_cloud;
+
+namespace {
+
+// Whether two floats have the same bits (NaN included).
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+bool same_mesh(const IndexedMesh& a, const IndexedMesh& b) {
+    return a.positions.size() == b.positions.size() && a.triangles == b.triangles &&
+           (a.positions.empty() ||
+            std::memcmp(a.positions.data(), b.positions.data(), a.positions.size() * sizeof(Vec3)) == 0);
+}
+
+}  // namespace
 
 TEST_CASE("for_chunks calls each fixed chunk once, whatever the thread count") {
     for (const std::size_t n : {std::size_t(0), std::size_t(1), std::size_t(7), std::size_t(1000), std::size_t(1001)})
@@ -154,5 +173,35 @@ TEST_CASE("the output check's counts and the inward flags are the same for any t
         CHECK(inward_face_flags(mesh, bvh, threads) == flags);
         CHECK(inward_faces(mesh, bvh, threads) == std::size_t(std::count(flags.begin(), flags.end(), std::uint8_t(1))));
         CHECK(count_self_intersections(mesh, threads) == pairs);
+    }
+}
+
+TEST_CASE("the solid's reading and the samples' sides are the same for any thread count") {
+    // A torus (the first two grids read side by side; three read at once from three threads) and
+    // the bunny (the third grid needed where the first two do not agree).
+    const PointCloud torus = torus_cloud(20000);
+    const PointCloud bunny = bundled_bunny();
+    for (const PointCloud* cloud : {&torus, &bunny}) {
+        const BoundingBox box = cloud->bounds();
+        const PointTransform transform{box.center(), float(1.0 / box.diagonal())};
+        const SolidStart one = solid_start(PointSpan(cloud->points), transform, 2000, 1);
+        const std::vector<Vec3> sides = sample_sides(PointSpan(cloud->points), transform, one.surface, one.reach, 1);
+        if (cloud == &torus) {
+            CHECK(one.solid_genus == 1);
+            REQUIRE(one.mesh);
+        }
+        for (const std::uint32_t threads : {2u, 3u, 4u}) {
+            CAPTURE(threads);
+            const SolidStart more = solid_start(PointSpan(cloud->points), transform, 2000, threads);
+            CHECK(more.solid_genus == one.solid_genus);
+            CHECK(same_bits(more.reach, one.reach));
+            CHECK(same_mesh(more.surface, one.surface));
+            CHECK(more.mesh.has_value() == one.mesh.has_value());
+            if (more.mesh && one.mesh) CHECK(same_mesh(more.mesh->to_indexed(), one.mesh->to_indexed()));
+            const std::vector<Vec3> more_sides =
+                sample_sides(PointSpan(cloud->points), transform, more.surface, more.reach, threads);
+            REQUIRE(more_sides.size() == sides.size());
+            CHECK((sides.empty() || std::memcmp(sides.data(), more_sides.data(), sides.size() * sizeof(Vec3)) == 0));
+        }
     }
 }

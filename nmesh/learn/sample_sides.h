@@ -17,6 +17,7 @@
 // the rotor ring's thin wall learnt as well either way: docs/algorithm.md).
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "nmesh/indexed_mesh.h"
@@ -31,8 +32,8 @@ namespace nmesh {
 // wall round; 0 for a point farther from it than `reach` (the offset the surface was built at,
 // and a cell): a point in a tunnel the solid fills (a handle narrower than the offset) has no
 // face that surface runs beyond, and its sample is learnt by any winner. Empty when the surface
-// is. O(V + P) expected.
+// is. O(V + P) expected. The points are taken on `threads` threads (0: the machine's cores).
 std::vector<Vec3> sample_sides(PointSpan points, const PointTransform& transform, const IndexedMesh& surface,
-                               float reach);
+                               float reach, std::uint32_t threads = 1);
 
 }  // namespace nmesh

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "nmesh/bounding_box.h"
+#include "nmesh/util/parallel.h"
 
 namespace nmesh {
 
@@ -150,33 +151,36 @@ struct Grid {
 // The squared distance, in cells, from each cell's centre to the nearest cell holding a point,
 // clamped at kFar: exact, in three passes of distance_line over one byte per cell. Clamping
 // between the passes changes no value below kFar: a clamped cell's candidates are kFar or more.
-// O(cells).
+// O(cells). The lines of a pass are independent: `threads` share them.
 constexpr std::uint8_t kFar = 255;
-std::vector<std::uint8_t> distances(const Grid& g, const std::vector<Vec3>& points) {
+std::vector<std::uint8_t> distances(const Grid& g, const std::vector<Vec3>& points, std::uint32_t threads) {
     std::vector<std::uint8_t> dist(g.size(), kFar);
     for (const Vec3& q : points) {
         const Vec3 c = (q - g.origin) * (1.0f / g.h);
         dist[g.index(std::uint32_t(c.x + 0.5f), std::uint32_t(c.y + 0.5f), std::uint32_t(c.z + 0.5f))] = 0;
     }
     const std::uint32_t longest = std::max({g.dims[0], g.dims[1], g.dims[2]});
-    std::vector<double> line(longest), out(longest), z(longest + 1);
-    std::vector<int> v(longest);
     const std::uint64_t stride[3] = {1, g.dims[0], std::uint64_t(g.dims[0]) * g.dims[1]};
     for (int axis = 0; axis < 3; ++axis) {
         const int n = int(g.dims[axis]);
         const int a = (axis + 1) % 3, b = (axis + 2) % 3;
-        for (std::uint32_t i = 0; i < g.dims[a]; ++i)
-            for (std::uint32_t j = 0; j < g.dims[b]; ++j) {
-                const std::uint64_t base = i * stride[a] + j * stride[b];
-                bool empty = true;  // a line of kFar stays kFar: most of the grid is far from the points
-                for (int q = 0; q < n; ++q) {
-                    line[q] = dist[base + q * stride[axis]];
-                    empty = empty && line[q] == kFar;
+        for_chunks(g.dims[a], 8, threads, [&](std::size_t i_begin, std::size_t i_end) {
+            std::vector<double> line(longest), out(longest), z(longest + 1);
+            std::vector<int> v(longest);
+            for (std::size_t i = i_begin; i < i_end; ++i)
+                for (std::uint32_t j = 0; j < g.dims[b]; ++j) {
+                    const std::uint64_t base = i * stride[a] + j * stride[b];
+                    bool empty = true;  // a line of kFar stays kFar: most of the grid is far from the points
+                    for (int q = 0; q < n; ++q) {
+                        line[q] = dist[base + q * stride[axis]];
+                        empty = empty && line[q] == kFar;
+                    }
+                    if (empty) continue;
+                    distance_line(line.data(), n, out.data(), v.data(), z.data());
+                    for (int q = 0; q < n; ++q)
+                        dist[base + q * stride[axis]] = std::uint8_t(std::min(out[q], double(kFar)));
                 }
-                if (empty) continue;
-                distance_line(line.data(), n, out.data(), v.data(), z.data());
-                for (int q = 0; q < n; ++q) dist[base + q * stride[axis]] = std::uint8_t(std::min(out[q], double(kFar)));
-            }
+        });
     }
     return dist;
 }
@@ -373,7 +377,7 @@ GridReading read_grid(PointSpan points, const PointTransform& transform, float o
     if (!(t.d > 0.0f)) return r;
     Grid g = base_grid(t.box, t.d);
     g.origin = g.origin + kGridShifts[shift] * g.h;
-    const std::vector<std::uint8_t> dist = distances(g, t.p);
+    const std::vector<std::uint8_t> dist = distances(g, t.p, 1);
     std::vector<std::uint8_t> state;
     const auto [shell, inside] = classify(dist, outside_levels(g.dims, dist), offset * t.d / g.h, state);
     r.walled = double(inside) >= kMinInside * double(shell);
@@ -384,7 +388,7 @@ GridReading read_grid(PointSpan points, const PointTransform& transform, float o
 }  // namespace solid_detail
 
 
-SolidSurface solid_surface(PointSpan points, const PointTransform& transform) {
+SolidSurface solid_surface(PointSpan points, const PointTransform& transform, std::uint32_t threads) {
     SolidSurface out;
     const Transformed t = transformed(points, transform);
     const std::vector<Vec3>& p = t.p;
@@ -397,36 +401,64 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform) {
     // The grids, each shifted by a fraction of a cell: a tunnel between two cells' corners (the
     // grid's own) comes and goes as the grid moves, a handle of the object does not.
     constexpr int kGrids = int(std::size(kGridShifts));
+    static_assert(kGrids == 3, "two grids read first, the third when they disagree");
     std::array<Grid, kGrids> grids;
-    std::array<std::vector<std::uint8_t>, kGrids> dist, level;
+    std::array<std::vector<std::uint8_t>, kGrids> dist, level, state;
     for (int k = 0; k < kGrids; ++k) {
         grids[k] = g;
         grids[k].origin = g.origin + kGridShifts[k] * g.h;
-        dist[k] = distances(grids[k], p);
-        level[k] = outside_levels(grids[k].dims, dist[k]);
     }
+    // A grid's distances and outside levels, made when a reading first needs them (on `inner`
+    // threads: the distance transform's lines; the flood is one thread's): the first two grids'
+    // at once, side by side, and the third's with them on three threads or more, else when a
+    // reading first needs it (where the first two agree on a genus at every offset, never).
+    const unsigned cores = resolve_threads(threads);
+    const int first = cores >= 3 ? 3 : 2;
+    const auto prepare = [&](int k, unsigned inner) {
+        if (!dist[k].empty()) return;
+        dist[k] = distances(grids[k], p, inner);
+        level[k] = outside_levels(grids[k].dims, dist[k]);
+    };
+    for_each_task(std::size_t(first), cores, [&](std::size_t k) { prepare(int(k), std::max(1u, cores / first)); });
+    // One grid's reading at one offset: whether it walls round, its components and genus.
+    const auto read = [&](int k, float offset) {
+        solid_detail::GridReading r;
+        const auto [shell, inside] = classify(dist[k], level[k], offset * d / g.h, state[k]);
+        r.walled = double(inside) >= kMinInside * double(shell);
+        if (r.walled) std::tie(r.components, r.genus) = surface_topology(grids[k], state[k]);
+        return r;
+    };
     // The reading at each offset, smallest first: what the grids agree on (a majority of them
     // walled round, one component, the same genus), until two offsets in a row agree on the same
     // genus. A genus that holds over a range of offsets is the object's (persistence); one that
     // holds at a single offset is the sampling's (the gaps closing) or the grid's.
-    std::vector<std::uint8_t> state;
     int previous = -1;  // the genus agreed at the previous offset, -1 when none
     float previous_offset = 0.0f;
     for (const float offset : kOffsets) {
         // A genus read beyond twice the offset that first walls round would be that of a solid
         // closing gaps twice as wide as the sampling's own: not the object's.
         if (out.walled && offset > 2.0f * out.offset) break;
-        int genera[kGrids];
+        // The first two grids' readings side by side (the third's with them on three threads);
+        // the third's when they do not agree on a genus (two that agree are a majority already).
+        // Taken in their order.
+        std::array<solid_detail::GridReading, kGrids> readings;
+        for_each_task(std::size_t(first), cores, [&](std::size_t k) { readings[k] = read(int(k), offset); });
+        const auto genus_of = [&](int k) {
+            const solid_detail::GridReading& r = readings[std::size_t(k)];
+            return !r.walled ? -1 : r.components == 1 ? r.genus : -2;  // -2: several components
+        };
+        const bool third = !(genus_of(0) >= 0 && genus_of(0) == genus_of(1));
+        if (third && first < 3) {
+            prepare(2, cores);
+            readings[2] = read(2, offset);
+        }
+        int genera[kGrids] = {-1, -1, -1};
         int walled = 0;
-        for (int k = 0; k < kGrids; ++k) genera[k] = -1;
-        for (int k = 0; k < kGrids; ++k) {
-            // Two grids that agree are a majority already.
-            if (k == 2 && genera[0] >= 0 && genera[0] == genera[1]) break;
-            const auto [shell, inside] = classify(dist[k], level[k], offset * d / g.h, state);
-            if (double(inside) < kMinInside * double(shell)) continue;
+        for (int k = 0; k < (third ? kGrids : 2); ++k) {
+            genera[k] = genus_of(k);
+            if (!readings[std::size_t(k)].walled) continue;
             ++walled;
-            const auto [components, genus] = surface_topology(grids[k], state);
-            genera[k] = components == 1 ? genus : -2;  // -2: several components
+            const std::uint32_t components = readings[std::size_t(k)].components;
             if (!out.walled || components != 1) out.components = components;
         }
         if (walled > 0 && !out.walled) {
@@ -459,27 +491,29 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform) {
     for (int k = 0; k < kGrids && out.surface.triangles.empty(); ++k) {
         Grid coarse = grid_over(box, 2.0f * g.h, largest + 4.0f * g.h);
         coarse.origin = coarse.origin + kGridShifts[k] * g.h;
-        const std::vector<std::uint8_t> coarse_dist = distances(coarse, p);
+        const std::vector<std::uint8_t> coarse_dist = distances(coarse, p, cores);
         const std::vector<std::uint8_t> coarse_level = outside_levels(coarse.dims, coarse_dist);
         for (const float offset : {out.offset, next}) {
-            classify(coarse_dist, coarse_level, offset * d / coarse.h, state);
-            if (surface_topology(coarse, state) != std::make_pair(std::uint32_t(1), out.genus)) continue;
-            out.surface = outer_surface(coarse, state);
+            classify(coarse_dist, coarse_level, offset * d / coarse.h, state[0]);
+            if (surface_topology(coarse, state[0]) != std::make_pair(std::uint32_t(1), out.genus)) continue;
+            out.surface = outer_surface(coarse, state[0]);
             break;
         }
         if (!out.surface.triangles.empty() || k > 0) break;  // the shifted coarse grids: not worth it
     }
     for (int k = 0; k < kGrids && out.surface.triangles.empty(); ++k) {
-        classify(dist[k], level[k], out.offset * d / g.h, state);
-        if (surface_topology(grids[k], state) == std::make_pair(std::uint32_t(1), out.genus))
-            out.surface = outer_surface(grids[k], state);
+        prepare(k, cores);
+        classify(dist[k], level[k], out.offset * d / g.h, state[0]);
+        if (surface_topology(grids[k], state[0]) == std::make_pair(std::uint32_t(1), out.genus))
+            out.surface = outer_surface(grids[k], state[0]);
     }
     return out;
 }
 
-SolidStart solid_start(PointSpan points, const PointTransform& transform, std::uint32_t target) {
+SolidStart solid_start(PointSpan points, const PointTransform& transform, std::uint32_t target,
+                       std::uint32_t threads) {
     SolidStart out;
-    const SolidSurface solid = solid_surface(points, transform);
+    const SolidSurface solid = solid_surface(points, transform, threads);
     if (!solid.walled || solid.components != 1 || !solid.stable) return out;
     out.solid_genus = solid.genus;
     if (solid.surface.triangles.empty()) return out;  // a genus-0 solid walled round too far out

@@ -29,7 +29,8 @@
 //     no genus persists, the solid is not read and the learning starts from the tetrahedron;
 //   - the start is the outer surface simplified to start_vertices(target) vertices (simplify);
 //   - the grid has at most kMaxVoxels cells (larger voxels for a cloud that would need more):
-//     one byte each for the distances, the states and the components' flood, 50 MB at most.
+//     one byte each for the distances, the states and the components' flood, 50 MB at most
+//     per grid (the first two grids are read side by side, the third only where they disagree).
 #pragma once
 
 #include <algorithm>
@@ -87,7 +88,9 @@ struct SolidSurface {
 };
 
 // The solid `points` (through `transform`) wall round, and its outer surface. O(P + voxels).
-SolidSurface solid_surface(PointSpan points, const PointTransform& transform);
+// `threads` (0: the machine's cores) read the shifted grids side by side: the same result for
+// every count.
+SolidSurface solid_surface(PointSpan points, const PointTransform& transform, std::uint32_t threads = 1);
 
 // The learning's start for topology closed and open: the solid's outer surface simplified to
 // start_vertices(target) vertices, when `points` wall a solid round (one component, a genus that
@@ -101,7 +104,8 @@ struct SolidStart {
     // the offset and kSideMargin d.
     float reach = 0.0f;
 };
-SolidStart solid_start(PointSpan points, const PointTransform& transform, std::uint32_t target);
+SolidStart solid_start(PointSpan points, const PointTransform& transform, std::uint32_t target,
+                       std::uint32_t threads = 1);
 // Half the target, at most kMaxStart: a start coarse enough for the learning to shape, with the
 // second half of the growth to fit it (the knot's tube is about 11 edges round at 2,000).
 inline constexpr std::uint32_t kMaxStart = 2000;

@@ -54,7 +54,7 @@ Result learn_from(PointSpan cloud, const Parameters& params, const Parameters& l
     std::vector<Vec3> sides;
     if (solid.mesh) {
         engine->keep_genus();
-        sides = sample_sides(cloud, norm.transform, solid.surface, solid.reach);
+        sides = sample_sides(cloud, norm.transform, solid.surface, solid.reach, params.threads);
         engine->set_sample_sides(sides.data());
     }
     engine->set_profiling(callbacks.profile);
@@ -138,7 +138,7 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
     // tetrahedron, with the handle search.
     SolidStart solid;
     if (params.topology != Topology::sphere && params.solid_start)
-        solid = solid_start(cloud, norm.transform, params.target_vertices);
+        solid = solid_start(cloud, norm.transform, params.target_vertices, params.threads);
     // Choice: a learning whose mesh stops growing is tried again from the next start: from the
     // solid's surface, then from the tetrahedron with the searches (as --no-solid-start), then the
     // paper's learning (as topology sphere: no checkpoints, no searches; its output still opened
