@@ -115,7 +115,7 @@ if(NOT fitted MATCHES "\"solid_start\": false.*\"fit_rounds\": 2," OR dm_default
   math(EXPR failures "${failures} + 1")
 endif()
 # --threads: the same mesh, byte for byte, from one thread and from three; recorded in the
-# parameters; a count out of range is a usage error.
+# parameters; a count out of range is a usage error, in reconstruct and in eval.
 expect(threads_one 0 "" ${NMESH} reconstruct ${DATA} -o ${WORK}/threads1.ply --vertices 1000 --threads 1 --quiet)
 expect(threads_three 0 "" ${NMESH} reconstruct ${DATA} -o ${WORK}/threads3.ply --vertices 1000 --threads 3 --quiet
   --stats ${WORK}/threads3.json)
@@ -128,6 +128,8 @@ if(NOT threads1 STREQUAL threads3 OR NOT threads3_stats MATCHES "\"threads\": 3}
 endif()
 expect(bad_threads 2 "invalid parameter threads: must be in \\[0, 1024\\]"
   ${NMESH} reconstruct ${DATA} -o ${WORK}/x.ply --threads 1025)
+expect(eval_threads 0 "\"closed\": true" ${NMESH} eval ${DATA} ${WORK}/threads1.ply --json --threads 2)
+expect(bad_eval_threads 2 "--threads: must be in \\[0, 1024\\]" ${NMESH} eval ${DATA} ${WORK}/threads1.ply --threads 5000)
 expect(quiet 0 "^$" ${NMESH} reconstruct ${DATA} -o ${WORK}/quiet.obj --vertices 200 --quiet)
 expect(eval_json 0 "\"closed\": true.*\"genus\": 0" ${NMESH} eval ${DATA} ${WORK}/mesh.ply --json)
 expect(eval_text 0 "dm_x_t" ${NMESH} eval ${DATA} ${WORK}/quiet.obj)

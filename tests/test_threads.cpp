@@ -1,6 +1,6 @@
-// Threads (Parameters::threads): the parallel helper's chunks, its exceptions and its inline
-// single thread; the parameter's range; the output check's counts, the solid's reading and the
-// samples' sides, the same for any thread count.
+// Threads (Parameters::threads, EvalOptions::threads): the parallel helper's chunks, its
+// exceptions and its inline single thread; and the same meshes, statistics and metrics, bit for
+// bit, for every thread count.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -10,6 +10,7 @@
 #include <cstring>
 #include <mutex>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -23,6 +24,7 @@
 #include "nmesh/learn/sample_sides.h"
 #include "nmesh/learn/solid_start.h"
 #include "nmesh/mesh/orientation.h"
+#include "nmesh/metrics.h"
 #include "nmesh/reconstruct.h"
 #include "nmesh/util/parallel.h"
 
@@ -41,6 +43,42 @@ bool same_mesh(const IndexedMesh& a, const IndexedMesh& b) {
     return a.positions.size() == b.positions.size() && a.triangles == b.triangles &&
            (a.positions.empty() ||
             std::memcmp(a.positions.data(), b.positions.data(), a.positions.size() * sizeof(Vec3)) == 0);
+}
+
+// The statistics' counts (not the seconds) of two runs agree.
+void check_same_counts(const Statistics& a, const Statistics& b) {
+    CHECK(a.iterations == b.iterations);
+    CHECK(a.settle_iterations == b.settle_iterations);
+    CHECK(a.splits == b.splits);
+    CHECK(a.collapses == b.collapses);
+    CHECK(a.collapses_refused == b.collapses_refused);
+    CHECK(a.swaps_tried == b.swaps_tried);
+    CHECK(a.swaps_kept == b.swaps_kept);
+    CHECK(a.side_skips == b.side_skips);
+    CHECK(a.twist_checks == b.twist_checks);
+    CHECK(a.twist_retries == b.twist_retries);
+    CHECK(a.output_retries == b.output_retries);
+    CHECK(a.start_retries == b.start_retries);
+    CHECK(a.start_vertices == b.start_vertices);
+    CHECK(a.solid_genus == b.solid_genus);
+    CHECK(a.handles == b.handles);
+    CHECK(a.bridges == b.bridges);
+    CHECK(a.open_faces_removed == b.open_faces_removed);
+    CHECK(a.open_vertices_added == b.open_vertices_added);
+    CHECK(a.finished == b.finished);
+    CHECK(a.reoriented == b.reoriented);
+    CHECK(a.genus == b.genus);
+    CHECK(a.boundary_loops == b.boundary_loops);
+    CHECK(a.crossing_pairs == b.crossing_pairs);
+    CHECK(a.inward_faces == b.inward_faces);
+}
+
+// write_json at full precision: every field of the report, each double to its last bit.
+std::string report_text(const QualityReport& q) {
+    std::ostringstream out;
+    out.precision(17);
+    write_json(out, q);
+    return out.str();
 }
 
 }  // namespace
@@ -154,6 +192,77 @@ TEST_CASE("threads out of range are refused, naming the parameter") {
     }
     p.threads = kMaxThreads;
     CHECK_NOTHROW(p.validate());
+    EvalOptions options;
+    options.threads = kMaxThreads + 1;
+    const IndexedMesh sphere = icosphere(1);
+    CHECK_THROWS_AS(evaluate(sphere.positions, sphere, options), ParameterError);
+}
+
+TEST_CASE("the bunny and a sphere: the same mesh and statistics for 1, 2 and 4 threads, closed and open") {
+    const PointCloud bunny = bundled_bunny();
+    REQUIRE(bunny.size() == 35947);
+    const PointCloud sphere = sphere_cloud(6000);
+    struct Case {
+        const PointCloud* cloud;
+        std::uint32_t vertices;
+        Topology topology;
+    };
+    for (const Case& c : {Case{&bunny, 1000, Topology::closed}, Case{&bunny, 1000, Topology::open},
+                          Case{&sphere, 800, Topology::closed}, Case{&sphere, 800, Topology::open}}) {
+        Parameters p;
+        p.target_vertices = c.vertices;
+        p.topology = c.topology;
+        p.threads = 1;
+        const Result one = reconstruct(*c.cloud, p);
+        REQUIRE(!one.mesh.triangles.empty());
+        if (c.cloud == &bunny) CHECK(one.stats.solid_genus == 0);  // the solid was read
+        for (const std::uint32_t threads : {2u, 4u}) {
+            CAPTURE(threads);
+            CAPTURE(topology_name(c.topology));
+            p.threads = threads;
+            const Result more = reconstruct(*c.cloud, p);
+            CHECK(same_mesh(one.mesh, more.mesh));
+            check_same_counts(one.stats, more.stats);
+        }
+    }
+}
+
+TEST_CASE("evaluate gives the same report, bit for bit, for 1, 2 and 4 threads") {
+    // More points and samples than one block of the measuring (65,536), so that the sums run over
+    // several blocks; a mesh with crossing pairs and inward faces, so that both counts are at work.
+    // The cloud samples both spheres of the mesh (the surface-to-cloud maximum's search stays short).
+    PointCloud cloud = sphere_cloud(40000);
+    for (const Vec3& v : sphere_cloud(30000, 0.9f, {0.27f, 0.0f, 0.0f}).points) cloud.points.push_back(v);
+    IndexedMesh mesh = icosphere(4);
+    const IndexedMesh inner = icosphere(3, {0.3f, 0.0f, 0.0f});
+    const std::uint32_t offset = std::uint32_t(mesh.positions.size());
+    for (const Vec3& v : inner.positions) mesh.positions.push_back(v * 0.9f);
+    for (const auto& t : inner.triangles) mesh.triangles.push_back({t[0] + offset, t[2] + offset, t[1] + offset});
+    EvalOptions options;
+    options.threads = 1;
+    const QualityReport one = evaluate(cloud.points, mesh, options);
+    CHECK(one.self_intersections > 0);
+    for (const std::uint32_t threads : {2u, 4u}) {
+        CAPTURE(threads);
+        options.threads = threads;
+        const QualityReport more = evaluate(cloud.points, mesh, options);
+        CHECK(report_text(more) == report_text(one));
+        CHECK(same_bits(more.p2s_mean, one.p2s_mean));
+        CHECK(same_bits(more.p2s_rms, one.p2s_rms));
+        CHECK(same_bits(more.dm_x_t, one.dm_x_t));
+        CHECK(same_bits(more.s2p_mean, one.s2p_mean));
+        CHECK(same_bits(more.hausdorff, one.hausdorff));
+        CHECK(more.self_intersections == one.self_intersections);
+    }
+    // The learnt bunny, closed: its inward faces counted on the threads as well.
+    Parameters p;
+    p.target_vertices = 1000;
+    const PointCloud bunny = bundled_bunny();
+    const Result r = reconstruct(bunny, p);
+    options.threads = 1;
+    const QualityReport b1 = evaluate(bunny.points, r.mesh, options);
+    options.threads = 3;
+    CHECK(report_text(evaluate(bunny.points, r.mesh, options)) == report_text(b1));
 }
 
 TEST_CASE("the output check's counts and the inward flags are the same for any thread count") {

@@ -21,6 +21,7 @@
 #include "nmesh/metrics.h"
 #include "nmesh/reconstruct.h"
 #include "nmesh/run_report.h"
+#include "nmesh/util/parallel.h"
 
 namespace nmesh::cli {
 namespace {
@@ -32,7 +33,7 @@ constexpr const char* kMainUsage =
     "\n"
     "commands:\n"
     "  reconstruct INPUT -o OUTPUT [options]   point cloud (PLY, XYZ, OBJ) to mesh (PLY, OBJ, OFF)\n"
-    "  eval POINTS MESH [--json]               quality of a mesh against its point cloud\n"
+    "  eval POINTS MESH [options]              quality of a mesh against its point cloud\n"
     "  info FILE                               what a file holds\n"
     "  render MESH -o IMAGE.png [options]      a picture of a mesh (software rendering, no GPU)\n"
     "\n"
@@ -72,8 +73,9 @@ constexpr const char* kReconstructUsage =
     "                         finishing stage (default 64; 0: every point)\n"
     "  --settle X             X * n iterations without topology changes at the end (default 0)\n"
     "  --seed S               random seed; the same seed gives the same mesh (default 1)\n"
-    "  --threads N            threads for the work beside the learning (default 0: the machine's\n"
-    "                         cores); the same mesh for every N\n"
+    "  --threads N            threads for the work beside the learning: the solid's reading, the\n"
+    "                         output check, the --stats metrics (default 0: the machine's cores);\n"
+    "                         the same mesh for every N\n"
     "  --snapshots N1,N2,...  also write the mesh when it reaches these sizes (OUTPUT_<N>v.ext)\n"
     "  --stats FILE.json      write parameters, statistics and quality metrics as JSON\n"
     "  --ascii                write PLY as ASCII instead of binary\n"
@@ -81,7 +83,7 @@ constexpr const char* kReconstructUsage =
     "  --quiet                no progress and no summary (warnings and errors still shown)\n";
 
 constexpr const char* kEvalUsage =
-    "usage: nmesh eval POINTS MESH [--json]\n"
+    "usage: nmesh eval POINTS MESH [--json] [--threads N]\n"
     "\n"
     "Measures MESH against the cloud POINTS: the paper's DM(X,T) (eq. 10-11), point-to-surface and\n"
     "surface-to-point distances, the Hausdorff distance (absolute and relative to the cloud's\n"
@@ -89,7 +91,9 @@ constexpr const char* kEvalUsage =
     "boundary loops, edges and length, self-intersections) and triangle quality.\n"
     "\n"
     "options:\n"
-    "  --json                 print JSON instead of text\n";
+    "  --json                 print JSON instead of text\n"
+    "  --threads N            threads for the measuring (default 0: the machine's cores); the same\n"
+    "                         report for every N\n";
 
 constexpr const char* kInfoUsage =
     "usage: nmesh info FILE\n"
@@ -153,10 +157,12 @@ void print_summary(const Result& r, const std::string& output) {
 }
 
 // evaluate(), with its progress on stderr when it takes long (a cloud of millions of points).
-QualityReport evaluate_with_progress(const std::vector<Vec3>& points, const IndexedMesh& mesh, bool quiet) {
+QualityReport evaluate_with_progress(const std::vector<Vec3>& points, const IndexedMesh& mesh, bool quiet,
+                                     std::uint32_t threads) {
     ProgressBar bar(ProgressBar::detect(quiet));
     EvalOptions options;
     options.progress = bar.task("measuring the mesh against the cloud");
+    options.threads = threads;
     const QualityReport q = evaluate(points, mesh, options);
     bar.finish();
     return q;
@@ -282,7 +288,7 @@ int run_reconstruct(int argc, char** argv) {
                                                "side? try --topology open)"
                                              : "");
     if (args.has("--stats")) {
-        const QualityReport q = evaluate_with_progress(cloud.points, r.mesh, quiet);
+        const QualityReport q = evaluate_with_progress(cloud.points, r.mesh, quiet, p.threads);
         write_file_atomically(stats_path, [&](std::ostream& o) { write_run_json(o, input, p, r, q); });
         if (!quiet)
             std::fprintf(stderr, "nmesh: DM(X,T) %.6g, Hausdorff %.3g%% of the diagonal; wrote %s\n", q.dm_x_t,
@@ -297,12 +303,16 @@ int run_eval(int argc, char** argv) {
         std::fputs(kEvalUsage, stdout);
         return 0;
     }
-    const Arguments args(argc, argv, 2, {"--json"}, {});
+    const Arguments args(argc, argv, 2, {"--json"}, {"--threads"});
     if (args.positional().size() != 2) throw UsageError("eval takes two files: POINTS MESH");
+    const std::uint64_t threads = args.count("--threads", 0);
+    if (threads > kMaxThreads)
+        throw UsageError("invalid option --threads: must be in [0, " + std::to_string(kMaxThreads) + "], got " +
+                         std::to_string(threads));
     const PointCloud cloud = read_points(args.positional()[0]);
     const IndexedMesh mesh = read_mesh(args.positional()[1]);
     if (cloud.empty()) throw IoError(args.positional()[0], "no points");
-    const QualityReport q = evaluate_with_progress(cloud.points, mesh, false);
+    const QualityReport q = evaluate_with_progress(cloud.points, mesh, false, std::uint32_t(threads));
     if (args.has("--json")) {
         write_json(std::cout, q);
         std::cout << "\n";

@@ -23,6 +23,7 @@
 #include "nmesh/geometry/triangle_intersection.h"
 #include "nmesh/mesh/orientation.h"
 #include "nmesh/metrics/topology.h"
+#include "nmesh/util/parallel.h"
 #include "nmesh/util/random.h"
 
 namespace nmesh {
@@ -38,6 +39,10 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Triangles whose smallest angle is below this are counted as poorly shaped (a common threshold
 // in meshing; 60 degrees is the equilateral optimum).
 constexpr double kSmallAngleDeg = 10.0;
+// The points and samples measured at a time (their distances kept until summed in order), and
+// the chunks of a block the threads take.
+constexpr std::size_t kBlock = std::size_t(1) << 16;
+constexpr std::size_t kChunk = 1024;
 
 Vector3d to_eigen(const Vec3& v) { return {double(v.x), double(v.y), double(v.z)}; }
 
@@ -187,6 +192,10 @@ std::vector<float> vertex_distances_to_cloud(PointSpan points, const IndexedMesh
 QualityReport evaluate(PointSpan points, const IndexedMesh& mesh, const EvalOptions& options) {
     check_inputs(points, mesh);
     if (options.surface_samples == 0) throw ParameterError("surface_samples", "metrics: surface_samples must be at least 1");
+    if (options.threads > kMaxThreads)
+        throw ParameterError("threads", "metrics: threads must be in [0, " + std::to_string(kMaxThreads) + "], got " +
+                                            std::to_string(options.threads));
+    const std::uint32_t threads = options.threads;
     QualityReport r;
     r.vertices = mesh.positions.size();
     r.faces = mesh.triangles.size();
@@ -194,23 +203,36 @@ QualityReport evaluate(PointSpan points, const IndexedMesh& mesh, const EvalOpti
 
     // DM(X,T) and point-to-surface. The triangle with the nearest centroid gives each point an
     // upper bound that lets the hierarchy search prune from the start.
+    // The points are measured a block at a time, each block's points on the threads, and the
+    // sums taken in the points' order: the same bits for any number of threads.
     const PointGrid centroid_index(centroids(mesh));
     const TriangleBvh bvh(mesh);
     double dm_sum = 0.0, p2s_sum = 0.0, p2s_sq_sum = 0.0, p2s_max = 0.0;
     constexpr std::size_t kProgressMask = (std::size_t(1) << 18) - 1;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        if (options.progress && (i & kProgressMask) == 0 && i > 0) options.progress(double(i) / double(points.size()));
-        const Vec3& p = points[i];
-        const NearestPoint c = centroid_index.find_nearest(p);
-        dm_sum += std::sqrt(double(c.squared_distance));
-        const auto& t = mesh.triangles[c.index];
-        const double bound =
-            point_triangle_squared_distance(p, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
-        const double d2 = bvh.nearest_squared_distance(p, bound);
-        const double d = std::sqrt(d2);
-        p2s_sum += d;
-        p2s_sq_sum += d2;
-        p2s_max = std::max(p2s_max, d);
+    std::vector<double> dm(std::min(kBlock, points.size())), p2s(dm.size());
+    for (std::size_t first = 0; first < points.size(); first += kBlock) {
+        if (options.progress && (first & kProgressMask) == 0 && first > 0)
+            options.progress(double(first) / double(points.size()));
+        const std::size_t count = std::min(kBlock, points.size() - first);
+        for_chunks(count, kChunk, threads, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t k = begin; k < end; ++k) {
+                const Vec3& p = points[first + k];
+                const NearestPoint c = centroid_index.find_nearest(p);
+                dm[k] = std::sqrt(double(c.squared_distance));
+                const auto& t = mesh.triangles[c.index];
+                const double bound =
+                    point_triangle_squared_distance(p, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
+                p2s[k] = bvh.nearest_squared_distance(p, bound);
+            }
+        });
+        for (std::size_t k = 0; k < count; ++k) {
+            dm_sum += dm[k];
+            const double d2 = p2s[k];
+            const double d = std::sqrt(d2);
+            p2s_sum += d;
+            p2s_sq_sum += d2;
+            p2s_max = std::max(p2s_max, d);
+        }
     }
     if (options.progress) options.progress(1.0);
     const double n = double(points.size());
@@ -240,21 +262,33 @@ QualityReport evaluate(PointSpan points, const IndexedMesh& mesh, const EvalOpti
         const double offset = rng.uniform();
         double sum = 0.0, worst = 0.0;
         std::size_t f = 0;
-        for (std::size_t i = 0; i < count; ++i) {
-            if (total > 0.0) {
-                const double at = (offset + double(i)) / double(count) * total;
-                while (f + 1 < cumulative.size() && cumulative[f] <= at) ++f;
-            } else {  // every triangle has zero area: take them in turn
-                f = i % tris.size();
+        // A block of samples drawn in turn, their distances found on the threads, summed in order.
+        std::vector<Vec3> samples(std::min(kBlock, count));
+        std::vector<double> distance(samples.size());
+        for (std::size_t first = 0; first < count; first += kBlock) {
+            const std::size_t block = std::min(kBlock, count - first);
+            for (std::size_t k = 0; k < block; ++k) {
+                const std::size_t i = first + k;
+                if (total > 0.0) {
+                    const double at = (offset + double(i)) / double(count) * total;
+                    while (f + 1 < cumulative.size() && cumulative[f] <= at) ++f;
+                } else {  // every triangle has zero area: take them in turn
+                    f = i % tris.size();
+                }
+                const double root = std::sqrt(rng.uniform()), w = rng.uniform();
+                const Corners& t = tris[f];
+                const Vector3d q =
+                    (1.0 - root) * to_eigen(t[0]) + root * (1.0 - w) * to_eigen(t[1]) + root * w * to_eigen(t[2]);
+                samples[k] = Vec3(float(q.x()), float(q.y()), float(q.z()));
             }
-            const double root = std::sqrt(rng.uniform()), w = rng.uniform();
-            const Corners& t = tris[f];
-            const Vector3d q =
-                (1.0 - root) * to_eigen(t[0]) + root * (1.0 - w) * to_eigen(t[1]) + root * w * to_eigen(t[2]);
-            const Vec3 sample(float(q.x()), float(q.y()), float(q.z()));
-            const double d = std::sqrt(double(cloud.nearest_squared_distance(sample)));
-            sum += d;
-            worst = std::max(worst, d);
+            for_chunks(block, kChunk, threads, [&](std::size_t begin, std::size_t end) {
+                for (std::size_t k = begin; k < end; ++k)
+                    distance[k] = std::sqrt(double(cloud.nearest_squared_distance(samples[k])));
+            });
+            for (std::size_t k = 0; k < block; ++k) {
+                sum += distance[k];
+                worst = std::max(worst, distance[k]);
+            }
         }
         r.s2p_mean = sum / double(count);
         // The largest distance, exact to within 1e-5 of the larger of the cloud's and the mesh's
@@ -284,10 +318,10 @@ QualityReport evaluate(PointSpan points, const IndexedMesh& mesh, const EvalOpti
         degenerate[f] = is_degenerate(mesh, mesh.triangles[f]);
         r.degenerate_triangles += std::size_t(degenerate[f]);
     }
-    r.self_intersections = count_self_intersections(mesh);
+    r.self_intersections = count_self_intersections(mesh, threads);
     // Orientation: meaningful for a closed mesh only.
     r.signed_volume = signed_volume(mesh);
-    r.inward_faces = r.closed ? inward_faces(mesh, bvh) : 0;
+    r.inward_faces = r.closed ? inward_faces(mesh, bvh, threads) : 0;
 
     // Triangle quality.
     double angle_sum = 0.0, angle_min = kInf;

@@ -204,7 +204,11 @@ py::tuple reconstruct(const py::array& points, std::uint32_t target_vertices, do
         // A C++ exception thrown in here reacquires the GIL as it leaves this scope.
         py::gil_scoped_release release;
         result = nmesh::reconstruct(cloud, params, callbacks);
-        if (metrics && !bridge.failed()) quality = nmesh::evaluate(cloud, result.mesh);
+        if (metrics && !bridge.failed()) {
+            nmesh::EvalOptions options;
+            options.threads = params.threads;
+            quality = nmesh::evaluate(cloud, result.mesh, options);
+        }
     }
     bridge.raise_if_failed();  // KeyboardInterrupt, or the callback's own exception
 
@@ -252,13 +256,15 @@ void write_mesh(const std::string& path, const py::array& vertices, const py::ar
 }
 
 // The metrics of `nmesh eval`, as the JSON object of `nmesh eval --json`.
-py::str evaluate(const py::array& points, const py::array& vertices, const py::array& faces) {
+py::str evaluate(const py::array& points, const py::array& vertices, const py::array& faces, std::uint32_t threads) {
     const nmesh::PointSpan cloud = point_view(points, "points");
     const nmesh::IndexedMesh mesh = mesh_from(vertices, faces);
+    nmesh::EvalOptions options;
+    options.threads = threads;
     std::ostringstream json;
     {
         py::gil_scoped_release release;
-        nmesh::write_json(json, nmesh::evaluate(cloud, mesh));
+        nmesh::write_json(json, nmesh::evaluate(cloud, mesh, options));
     }
     return py::str(json.str());
 }
@@ -306,6 +312,6 @@ PYBIND11_MODULE(_nmesh, m) {
     m.def("read_mesh", &read_mesh, arg("path"), "(vertices float32 (V, 3), faces int32 (F, 3)) of a mesh file.");
     m.def("write_mesh", &write_mesh, arg("path"), arg("vertices"), arg("faces"), arg("ascii"),
           "Writes float32 (V, 3) vertices and uint32 (F, 3) faces to a .ply, .obj or .off file.");
-    m.def("evaluate", &evaluate, arg("points"), arg("vertices"), arg("faces"),
+    m.def("evaluate", &evaluate, arg("points"), arg("vertices"), arg("faces"), arg("threads"),
           "The metrics of `nmesh eval` as its JSON text.");
 }

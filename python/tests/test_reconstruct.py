@@ -154,6 +154,8 @@ def test_threads_keyword(sphere: np.ndarray) -> None:
     assert np.array_equal(one.vertices, two.vertices) and np.array_equal(one.faces, two.faces)
     assert one.stats["metrics"] == two.stats["metrics"]
     assert two.stats["parameters"]["threads"] == 2
+    assert nmesh.evaluate(sphere, one.vertices, one.faces, threads=1) == nmesh.evaluate(
+        sphere, one.vertices, one.faces, threads=3)
     with pytest.raises(ValueError, match="threads") as e:
         nmesh.reconstruct(sphere, 300, threads=1025)
     assert e.value.parameter == "threads"
