@@ -399,12 +399,30 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform) {
     constexpr int kGrids = int(std::size(kGridShifts));
     std::array<Grid, kGrids> grids;
     std::array<std::vector<std::uint8_t>, kGrids> dist, level;
+    // Per grid, the cells counted by (distance, outside level): whether an offset walls round is
+    // read from them without a pass over the cells.
+    std::array<std::vector<std::uint32_t>, kGrids> counts;
     for (int k = 0; k < kGrids; ++k) {
         grids[k] = g;
         grids[k].origin = g.origin + kGridShifts[k] * g.h;
         dist[k] = distances(grids[k], p);
         level[k] = outside_levels(grids[k].dims, dist[k]);
+        counts[k].assign(256 * 256, 0);
+        for (std::size_t i = 0; i < dist[k].size(); ++i) ++counts[k][std::size_t(dist[k][i]) * 256 + level[k][i]];
     }
+    // The shell (distance at most r^2) and the inside (beyond the shell, outside level at most r^2)
+    // of grid k at an offset of r cells.
+    const auto walled_round = [&](int k, float r) {
+        const float r2 = r * r;
+        std::uint64_t shell = 0, inside = 0;
+        for (int dv = 0; dv < 256; ++dv)
+            for (int lv = 0; lv < 256; ++lv) {
+                const std::uint32_t n = counts[k][std::size_t(dv) * 256 + std::size_t(lv)];
+                if (float(dv) <= r2) shell += n;
+                else if (float(lv) <= r2) inside += n;
+            }
+        return double(inside) >= kMinInside * double(shell);
+    };
     // The reading at each offset, smallest first: what the grids agree on (a majority of them
     // walled round, one component, the same genus), until two offsets in a row agree on the same
     // genus. A genus that holds over a range of offsets is the object's (persistence); one that
@@ -422,8 +440,8 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform) {
         for (int k = 0; k < kGrids; ++k) {
             // Two grids that agree are a majority already.
             if (k == 2 && genera[0] >= 0 && genera[0] == genera[1]) break;
-            const auto [shell, inside] = classify(dist[k], level[k], offset * d / g.h, state);
-            if (double(inside) < kMinInside * double(shell)) continue;
+            if (!walled_round(k, offset * d / g.h)) continue;
+            classify(dist[k], level[k], offset * d / g.h, state);
             ++walled;
             const auto [components, genus] = surface_topology(grids[k], state);
             genera[k] = components == 1 ? genus : -2;  // -2: several components
