@@ -470,22 +470,21 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform) {
     }
     if (!out.stable) return out;
     if (out.genus == 0 && out.offset > kMaxShapeOffset) return out;  // no start: no surface to build
-    // The surface: from cells twice as large when those give the same topology at that offset or
-    // the next (a quarter of the triangles to simplify), else from the first grid that reads the
-    // agreed genus at that offset.
-    const float next = *(std::find(std::begin(kOffsets), std::end(kOffsets), out.offset) + 1);
-    for (int k = 0; k < kGrids && out.surface.triangles.empty(); ++k) {
-        Grid coarse = grid_over(box, 2.0f * g.h, largest + 4.0f * g.h);
-        coarse.origin = coarse.origin + kGridShifts[k] * g.h;
+    // The surface: from cells twice as large (the unshifted grid's) when those give the same
+    // topology at that offset or the next (a quarter of the triangles to simplify), else from the
+    // first grid that reads the agreed genus at that offset. A reading holds at two offsets, so
+    // the next one exists.
+    const float* next = std::find(std::begin(kOffsets), std::end(kOffsets), out.offset) + 1;
+    {
+        const Grid coarse = grid_over(box, 2.0f * g.h, largest + 4.0f * g.h);
         const std::vector<std::uint8_t> coarse_dist = distances(coarse, p);
         const std::vector<std::uint8_t> coarse_level = outside_levels(coarse.dims, coarse_dist);
-        for (const float offset : {out.offset, next}) {
+        for (const float offset : {out.offset, next != std::end(kOffsets) ? *next : out.offset}) {
             classify(coarse_dist, coarse_level, offset * d / coarse.h, state);
             if (surface_topology(coarse, state) != std::make_pair(std::uint32_t(1), out.genus)) continue;
             out.surface = outer_surface(coarse, state);
             break;
         }
-        if (!out.surface.triangles.empty() || k > 0) break;  // the shifted coarse grids: not worth it
     }
     for (int k = 0; k < kGrids && out.surface.triangles.empty(); ++k) {
         classify(dist[k], level[k], out.offset * d / g.h, state);
