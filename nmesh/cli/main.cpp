@@ -54,6 +54,9 @@ constexpr const char* kReconstructUsage =
     "  --cvs N                a vertex split every N iterations (default 100)\n"
     "  --cec N                inactive vertices removed every N * n iterations (default 20)\n"
     "  --no-edge-swap         basic Neural Meshes (no edge swap after collapses)\n"
+    "  --adaptivity A         a win counts 1 + A * (the winner's distance / its mean)^2, so that\n"
+    "                         tips and bends get vertices sooner (closed and open, from the solid's\n"
+    "                         start; default 0: the paper's signal counter)\n"
     "  --topology MODE        sphere: genus 0, the paper's algorithm; closed: a closed surface of the\n"
     "                         cloud's genus (its solid's, or handles learnt where it has through-holes);\n"
     "                         open: as closed, then opened where the cloud has no data (default closed)\n"
@@ -169,7 +172,7 @@ int run_reconstruct(int argc, char** argv) {
         argc, argv, 2,
         {"--no-edge-swap", "--no-fold-guard", "--no-solid-start", "--no-finish", "--quiet", "--ascii", "--save-on-interrupt"},
         {"-o", "--output", "--vertices", "--alpha-w", "--alpha-n", "--alpha", "--cvs", "--cec", "--seed", "--snapshots",
-         "--stats", "--settle", "--finish-rounds", "--fit-rounds", "--index-points", "--topology", "--min-hole"});
+         "--stats", "--settle", "--finish-rounds", "--fit-rounds", "--index-points", "--topology", "--min-hole", "--adaptivity"});
     if (args.positional().size() != 1) throw UsageError("reconstruct takes one INPUT file");
     const std::string input = args.positional()[0];
     const std::string output = args.has("-o") ? args.text("-o") : args.text("--output");
@@ -205,6 +208,7 @@ int run_reconstruct(int argc, char** argv) {
     p.cec = bounded_count("--cec", p.cec);
     p.settle = args.number("--settle", p.settle);
     p.min_hole = float(args.number("--min-hole", p.min_hole));
+    p.adaptivity = args.number("--adaptivity", p.adaptivity);
     p.seed = args.count("--seed", p.seed);
     p.edge_swap = !args.has("--no-edge-swap");
     p.fold_guard = !args.has("--no-fold-guard");

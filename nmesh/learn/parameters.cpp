@@ -39,6 +39,8 @@ void Parameters::validate() const {
     if (topology != Topology::sphere && topology != Topology::closed && topology != Topology::open)
         bad("topology", "must be Topology::sphere, closed or open");
     if (fit_rounds > 0 && !finish) bad("fit_rounds", "needs the finishing stage (finish), which is off");
+    if (!(adaptivity >= 0.0 && adaptivity <= 100.0))
+        bad("adaptivity", "must be in [0, 100], got " + std::to_string(adaptivity));
     if (!(min_hole >= 0.0f && min_hole <= 1000.0f)) bad("min_hole", "must be in [0, 1000], got " + std::to_string(min_hole));
 }
 

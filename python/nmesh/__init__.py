@@ -189,6 +189,7 @@ def reconstruct(
     fold_guard: bool = True,
     solid_start: bool = True,
     min_hole: float = 0.0,
+    adaptivity: float = 0.0,
     finish: bool = True,
     seed: int = 1,
     progress: Optional[ProgressCallback] = None,
@@ -223,6 +224,9 @@ def reconstruct(
     min_hole: open: the smallest hole to open, the distance from its middle to the nearest point
         in local point spacings (0: the default rule, which keeps the sampling's gaps and holes a
         few spacings across closed).
+    adaptivity: closed and open, from the solid's start: a win counts 1 + adaptivity * (the
+        winner's distance / its mean)^2, so that tips and bends get vertices sooner (0: the paper's
+        signal counter).
     finish: the finishing stage (flips, relaxation onto the cloud, repair of folds).
     seed: the random seed (an integer in [0, 2**64 - 1]).
     progress: called about every 65,536 iterations and once when the learning ends, as
@@ -268,6 +272,7 @@ def reconstruct(
         fold_guard=_flag("fold_guard", fold_guard),
         solid_start=_flag("solid_start", solid_start),
         min_hole=_real("min_hole", min_hole),
+        adaptivity=_real("adaptivity", adaptivity),
         finish=_flag("finish", finish),
         seed=_count("seed", seed, _UINT64_MAX),
         settle=_real("settle", settle),

@@ -34,6 +34,7 @@ def reconstruct(
     fold_guard: bool,
     solid_start: bool,
     min_hole: float,
+    adaptivity: float,
     progress: Optional[Callable[[int, int, float], Optional[bool]]],
     metrics: bool,
 ) -> Tuple[_Float32Array, _Int32Array, str, bool]: ...

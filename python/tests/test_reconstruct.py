@@ -106,7 +106,7 @@ def test_seed_and_parameters_reach_the_library(bunny: np.ndarray, bunny_mesh: nm
                                     "cvs": 80, "cec": 15, "edge_swap": True, "fold_guard": True, "solid_start": True,
                                     "topology": "closed",
                                     "settle": 0, "finish": False,
-                                    "finish_rounds": 10, "fit_rounds": 0, "min_hole": 0, "index_points_per_vertex": 0}
+                                    "finish_rounds": 10, "fit_rounds": 0, "min_hole": 0, "adaptivity": 0, "index_points_per_vertex": 0}
     assert params["seconds_finish"] == 0
 
 
@@ -141,7 +141,7 @@ def test_every_parameter_is_a_keyword() -> None:
     header = (Path(__file__).resolve().parents[2] / "nmesh" / "parameters.h").read_text()
     body = header[header.index("struct Parameters {"):header.index("void validate() const;")]
     fields = set(re.findall(r"^\s+[\w:]+ (\w+) = ", body, re.M))
-    assert "fold_guard" in fields and "solid_start" in fields and len(fields) == 17
+    assert "fold_guard" in fields and "solid_start" in fields and len(fields) == 18
     keywords = set(inspect.signature(nmesh.reconstruct).parameters) - {"points", "progress", "metrics"}
     assert {"vertices" if f == "target_vertices" else f for f in fields} == keywords
 
