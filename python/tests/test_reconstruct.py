@@ -86,7 +86,7 @@ def test_float32_points_are_not_copied(bunny: np.ndarray) -> None:
     assert nmesh._as_points(bunny) is bunny
     assert nmesh._as_points(bunny.astype(np.float64)) is not bunny
     # ...and the extension reads only such arrays, in place: it never converts one itself.
-    args = (400, 0.08, 0.01, 0.95, 100, 20, True, True, 1, 0.0, 10, 0, 64, "closed", True, True, None, False)
+    args = (400, 0.08, 0.01, 0.95, 100, 20, True, True, 1, 0.0, 10, 0, 64, "closed", True, True, 0.0, 0.0, None, False)
     for other in (bunny.astype(np.float64), np.asfortranarray(bunny), bunny[::2], bunny[:, :2]):
         with pytest.raises(TypeError, match="float32 array of shape"):
             _nmesh.reconstruct(other, *args)
