@@ -76,6 +76,11 @@ struct Parameters {
     // points it is measured at, not the distance to the scanned surface; off by default. Needs
     // the finishing stage.
     std::uint32_t fit_rounds = 0;
+    // Rounds of the finishing stage's surface fit, in [0, 100] (nmesh/finish/surface_fit.h): the
+    // vertices moved along their normals to where the triangles best match the cloud's points
+    // (a least-squares fit), keeping every guarantee of the stage. 0 leaves the stage as it was
+    // before the fit. Ignored without the finishing stage.
+    std::uint32_t surface_fit_rounds = 4;
     // The nearest-point index behind eq. (9) (the edge swap's deviation) and the finishing stage
     // holds at most this many cloud points per target vertex: the whole cloud up to that size,
     // else a stratified sample of it, so that its cost follows the mesh rather than the cloud.

@@ -71,6 +71,8 @@ constexpr const char* kReconstructUsage =
     "  --finish-rounds N      the finishing stage's regularisation rounds (default 10; 0: repair only)\n"
     "  --fit-rounds N         fit the triangles' centroids to the cloud points N times (default 0):\n"
     "                         lowers DM(X,T) at those points, not the distance to the surface\n"
+    "  --surface-fit-rounds N fit the vertices to the cloud's points by least squares, N rounds\n"
+    "                         (default 4; 0: off)\n"
     "  --index-points K       index at most K cloud points per vertex for the edge swap and the\n"
     "                         finishing stage (default 64; 0: every point)\n"
     "  --settle X             X * n iterations without topology changes at the end (default 0)\n"
@@ -172,7 +174,8 @@ int run_reconstruct(int argc, char** argv) {
         argc, argv, 2,
         {"--no-edge-swap", "--no-fold-guard", "--no-solid-start", "--no-finish", "--quiet", "--ascii", "--save-on-interrupt"},
         {"-o", "--output", "--vertices", "--alpha-w", "--alpha-n", "--alpha", "--cvs", "--cec", "--seed", "--snapshots",
-         "--stats", "--settle", "--finish-rounds", "--fit-rounds", "--index-points", "--topology", "--min-hole", "--adaptivity"});
+         "--stats", "--settle", "--finish-rounds", "--fit-rounds", "--surface-fit-rounds", "--index-points",
+         "--topology", "--min-hole", "--adaptivity"});
     if (args.positional().size() != 1) throw UsageError("reconstruct takes one INPUT file");
     const std::string input = args.positional()[0];
     const std::string output = args.has("-o") ? args.text("-o") : args.text("--output");
@@ -216,6 +219,7 @@ int run_reconstruct(int argc, char** argv) {
     p.finish = !args.has("--no-finish");
     p.finish_rounds = bounded_count("--finish-rounds", p.finish_rounds);
     p.fit_rounds = bounded_count("--fit-rounds", p.fit_rounds);
+    p.surface_fit_rounds = bounded_count("--surface-fit-rounds", p.surface_fit_rounds);
     p.index_points_per_vertex = bounded_count("--index-points", p.index_points_per_vertex);
     try {
         if (args.has("--topology")) p.topology = parse_topology(args.text("--topology").c_str());

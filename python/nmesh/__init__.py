@@ -195,6 +195,7 @@ def reconstruct(
     progress: Optional[ProgressCallback] = None,
     finish_rounds: int = 10,
     fit_rounds: int = 0,
+    surface_fit_rounds: int = 4,
     settle: float = 0.0,
     index_points_per_vertex: int = 64,
     metrics: bool = True,
@@ -235,6 +236,8 @@ def reconstruct(
         then returns the mesh reached so far with `cancelled` True (no exception). An exception
         raised by the callback cancels the learning and propagates out of reconstruct.
     finish_rounds, fit_rounds: the finishing stage's regularisation and centroid-fit rounds.
+    surface_fit_rounds: the finishing stage's surface fit (the vertices moved to where the mesh
+        best matches the points, least squares), in rounds; 0 turns it off.
     settle: settle * n iterations without topology changes once the target size is reached.
     index_points_per_vertex: cloud points indexed per target vertex (0: all of them).
     metrics: measure the mesh against the whole cloud for stats["metrics"], as the command-line
@@ -278,6 +281,7 @@ def reconstruct(
         settle=_real("settle", settle),
         finish_rounds=_count("finish_rounds", finish_rounds),
         fit_rounds=_count("fit_rounds", fit_rounds),
+        surface_fit_rounds=_count("surface_fit_rounds", surface_fit_rounds),
         index_points_per_vertex=_count("index_points_per_vertex", index_points_per_vertex),
         progress=progress,
         metrics=_flag("metrics", metrics),
