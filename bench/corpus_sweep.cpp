@@ -9,7 +9,7 @@
 //
 //   corpus_sweep CLOUD... --csv OUT.csv --md OUT.md [--seeds 1-10] [--fractions 2,6]
 //                [--sizes N,...] [--topology closed|open|sphere] [--check] [--samples N]
-//                [--genus NAME=G,...]
+//                [--genus NAME=G,...] [--surface-fit-rounds N]
 //
 // --fractions 2,6: points / 2 and points / 6 vertices; --sizes: these vertex counts instead. A
 // goal failure: a run in topology closed of a cloud whose reference is a manifold (closed, or with
@@ -19,7 +19,9 @@
 // cloud's bounding-box diagonal; the distance to the reference is measured from samples drawn
 // uniformly by area on each surface (--samples, default 50,000, per surface) to the other's
 // nearest triangle. --genus gives the reference genus of a cloud without a reference mesh (the
-// horse and the rocker arm: their sources' genus, ../shared/data/README.md).
+// horse and the rocker arm: their sources' genus, ../shared/data/README.md). --surface-fit-rounds:
+// Parameters::surface_fit_rounds (default: the library's), to compare the finishing stage with and
+// without its surface fit.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -144,15 +146,18 @@ int main(int argc, char** argv) {
     nmesh::Topology topology = nmesh::Topology::closed;
     std::size_t samples = 50000;
     std::map<std::string, int> known_genus;  // --genus
+    std::uint32_t surface_fit_rounds = nmesh::Parameters{}.surface_fit_rounds;
     try {
         const nmesh::cli::Arguments args(argc, argv, 1, {"--check"},
-                                         {"--csv", "--md", "--seeds", "--fractions", "--sizes", "--topology", "--samples", "--genus"});
+                                         {"--csv", "--md", "--seeds", "--fractions", "--sizes", "--topology",
+                                          "--samples", "--genus", "--surface-fit-rounds"});
         clouds = args.positional();
         seeds = parse_range(args.text("--seeds", "1-10"));
         fractions = parse_range(args.text("--fractions", "2,6"));
         if (args.has("--sizes")) sizes = parse_range(args.text("--sizes"));
         if (args.has("--topology")) topology = nmesh::parse_topology(args.text("--topology").c_str());
         samples = std::stoull(args.text("--samples", "50000"));
+        surface_fit_rounds = std::uint32_t(args.count("--surface-fit-rounds", surface_fit_rounds));
         std::stringstream genus_list(args.text("--genus"));
         for (std::string item; std::getline(genus_list, item, ',');) {
             const auto eq = item.find('=');
@@ -166,7 +171,8 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
         std::fprintf(stderr,
                      "%s\nusage: %s CLOUD... --csv OUT.csv --md OUT.md [--seeds 1-10] [--fractions 2,6] "
-                     "[--sizes N,...] [--topology closed|open|sphere] [--check] [--samples N] [--genus NAME=G,...]\n",
+                     "[--sizes N,...] [--topology closed|open|sphere] [--check] [--samples N] [--genus NAME=G,...] "
+                     "[--surface-fit-rounds N]\n",
                      e.what(), argv[0]);
         return 2;
     }
@@ -213,6 +219,7 @@ int main(int argc, char** argv) {
                     p.target_vertices = n;
                     p.seed = seed;
                     p.topology = mode;
+                    p.surface_fit_rounds = surface_fit_rounds;
                     try {
                         const auto t0 = std::chrono::steady_clock::now();
                         const nmesh::Result res = nmesh::reconstruct(cloud, p);

@@ -323,7 +323,9 @@ foreach(bad
     "--seed;x;--seed needs a whole number" "--snapshots;10,,20;--snapshots needs a whole number"
     "--cvs;99999999999;--cvs is too large" "--finish-rounds;1001;invalid parameter finish_rounds"
     "--finish-rounds;-1;--finish-rounds needs a whole number" "--fit-rounds;101;invalid parameter fit_rounds"
-    "--fit-rounds;-1;--fit-rounds needs a whole number")
+    "--fit-rounds;-1;--fit-rounds needs a whole number"
+    "--surface-fit-rounds;101;invalid parameter surface_fit_rounds"
+    "--surface-fit-rounds;-1;--surface-fit-rounds needs a whole number")
   list(GET bad 0 option)
   list(GET bad 1 value)
   list(GET bad 2 regex)

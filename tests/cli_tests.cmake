@@ -130,6 +130,23 @@ expect(bad_threads 2 "invalid parameter threads: must be in \\[0, 1024\\]"
   ${NMESH} reconstruct ${DATA} -o ${WORK}/x.ply --threads 1025)
 expect(eval_threads 0 "\"closed\": true" ${NMESH} eval ${DATA} ${WORK}/threads1.ply --json --threads 2)
 expect(bad_eval_threads 2 "--threads: must be in \\[0, 1024\\]" ${NMESH} eval ${DATA} ${WORK}/threads1.ply --threads 5000)
+# --surface-fit-rounds: recorded in the parameters; the mean distance from the points to the
+# surface lower with the fit (on by default) than with --surface-fit-rounds 0.
+expect(surface_fit_off 0 "wrote .*unfit.ply: 2000 vertices"
+  ${NMESH} reconstruct ${DATA} -o ${WORK}/unfit.ply --vertices 2000 --surface-fit-rounds 0 --stats ${WORK}/unfit.json)
+file(READ ${WORK}/unfit.json unfit)
+expect(surface_fit_on 0 "wrote .*fit.ply: 2000 vertices"
+  ${NMESH} reconstruct ${DATA} -o ${WORK}/fit.ply --vertices 2000 --stats ${WORK}/fit.json)
+file(READ ${WORK}/fit.json fit)
+string(REGEX MATCH "\"p2s_mean\": ([0-9.e+-]+)" unused "${unfit}")
+set(p2s_unfit "${CMAKE_MATCH_1}")
+string(REGEX MATCH "\"p2s_mean\": ([0-9.e+-]+)" unused "${fit}")
+set(p2s_fit "${CMAKE_MATCH_1}")
+if(NOT unfit MATCHES "\"surface_fit_rounds\": 0," OR p2s_unfit STREQUAL "" OR p2s_fit STREQUAL ""
+   OR NOT p2s_fit LESS p2s_unfit)
+  message(SEND_ERROR "the surface fit: mean point-to-surface ${p2s_fit} against ${p2s_unfit} without it")
+  math(EXPR failures "${failures} + 1")
+endif()
 expect(quiet 0 "^$" ${NMESH} reconstruct ${DATA} -o ${WORK}/quiet.obj --vertices 200 --quiet)
 expect(eval_json 0 "\"closed\": true.*\"genus\": 0" ${NMESH} eval ${DATA} ${WORK}/mesh.ply --json)
 expect(eval_text 0 "dm_x_t" ${NMESH} eval ${DATA} ${WORK}/quiet.obj)

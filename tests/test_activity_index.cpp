@@ -561,3 +561,34 @@ TEST_CASE("ActivityIndex: rejects alpha and counters out of range") {
     CHECK_THROWS_AS(no_decay.set_counter(0, -0.5), nmesh::ParameterError);
     CHECK(no_decay.counter(0) == 2.0);
 }
+
+TEST_CASE("ActivityIndex: a weighted signal adds its weight, decays like a unit one and ranks by it") {
+    ActivityIndex a(0.95);
+    a.add(1);
+    a.add(2);
+    a.add(3);
+    a.signal(1);
+    a.signal(2, 2.5);
+    a.signal(3, 0.25);
+    CHECK(a.counter(1) == doctest::Approx(1.0));
+    CHECK(a.counter(2) == doctest::Approx(2.5));
+    CHECK(a.counter(3) == doctest::Approx(0.25));
+    CHECK(a.most_active() == 2);
+    for (int i = 0; i < 10; ++i) a.decay();
+    const double f = std::pow(0.95, 10);
+    CHECK(a.counter(2) == doctest::Approx(2.5 * f));
+    a.signal(1, 3.0);  // 1 * f + 3 > 2.5 * f
+    CHECK(a.counter(1) == doctest::Approx(f + 3.0));
+    CHECK(a.most_active() == 1);
+    // A weight of 1 is the unit signal, bit for bit.
+    ActivityIndex b(0.9), c(0.9);
+    b.add(0);
+    c.add(0);
+    for (int i = 0; i < 100; ++i) {
+        b.signal(0);
+        c.signal(0, 1.0);
+        b.decay();
+        c.decay();
+    }
+    CHECK(b.counter(0) == c.counter(0));
+}

@@ -666,6 +666,7 @@ IndexedMesh reconstruct_as_by_hand(const PointCloud& cloud, Parameters p, const 
                                    const FinishOptions& options) {
     p.finish_rounds = std::uint32_t(options.rounds);
     p.fit_rounds = std::uint32_t(options.fit_rounds);
+    p.surface_fit_rounds = std::uint32_t(options.surface_fit_rounds);
     const Result r = reconstruct(cloud, p);
     REQUIRE(r.stats.finished);
     Mesh by_hand = learnt;

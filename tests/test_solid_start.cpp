@@ -16,6 +16,7 @@
 #include "sanitized.h"
 #include "topology_fixtures.h"
 #include "nmesh/bounding_box.h"
+#include "nmesh/error.h"
 #include "nmesh/learn/solid_start.h"
 #include "nmesh/mesh/mesh_check.h"
 #include "nmesh/reconstruct.h"
@@ -267,4 +268,30 @@ TEST_CASE("topology closed starts a torus sample from its solid's surface: genus
     CHECK(sphere.stats.solid_genus == -1);
     CHECK(sphere.stats.start_vertices == 4);
     CHECK(genus_of(sphere.mesh) == 0);
+}
+
+TEST_CASE("adaptivity weighs the signals from the solid's start only; 0 is the paper's counter") {
+    const PointCloud torus = test::torus_cloud(test::kSanitized ? 8000 : 20000);
+    Parameters p;
+    p.target_vertices = test::kSanitized ? 1200 : 3000;
+    const Result plain = reconstruct(torus, p);
+    REQUIRE(plain.stats.start_vertices > 4);  // from the solid
+    p.adaptivity = 0.5;
+    const Result weighed = reconstruct(torus, p);
+    CHECK(weighed.stats.start_vertices == plain.stats.start_vertices);
+    CHECK_FALSE(weighed.mesh.positions == plain.mesh.positions);  // the splits went elsewhere
+    CHECK(genus_of(weighed.mesh) == 1);
+    CHECK(weighed.stats.crossing_pairs == 0);
+    // From the tetrahedron (sphere mode) the counter is the paper's whatever the parameter.
+    p.topology = Topology::sphere;
+    const Result sphere_weighed = reconstruct(torus, p);
+    p.adaptivity = 0.0;
+    const Result sphere_plain = reconstruct(torus, p);
+    CHECK(sphere_weighed.mesh.positions == sphere_plain.mesh.positions);
+    CHECK(sphere_weighed.mesh.triangles == sphere_plain.mesh.triangles);
+    // The range.
+    p.adaptivity = -0.1;
+    CHECK_THROWS_AS(p.validate(), ParameterError);
+    p.adaptivity = 101.0;
+    CHECK_THROWS_AS(p.validate(), ParameterError);
 }

@@ -55,6 +55,9 @@ constexpr const char* kReconstructUsage =
     "  --cvs N                a vertex split every N iterations (default 100)\n"
     "  --cec N                inactive vertices removed every N * n iterations (default 20)\n"
     "  --no-edge-swap         basic Neural Meshes (no edge swap after collapses)\n"
+    "  --adaptivity A         a win counts 1 + A * (the winner's distance / its mean)^2, so that\n"
+    "                         tips and bends get vertices sooner (closed and open, from the solid's\n"
+    "                         start; default 0: the paper's signal counter)\n"
     "  --topology MODE        sphere: genus 0, the paper's algorithm; closed: a closed surface of the\n"
     "                         cloud's genus (its solid's, or handles learnt where it has through-holes);\n"
     "                         open: as closed, then opened where the cloud has no data (default closed)\n"
@@ -69,6 +72,8 @@ constexpr const char* kReconstructUsage =
     "  --finish-rounds N      the finishing stage's regularisation rounds (default 10; 0: repair only)\n"
     "  --fit-rounds N         fit the triangles' centroids to the cloud points N times (default 0):\n"
     "                         lowers DM(X,T) at those points, not the distance to the surface\n"
+    "  --surface-fit-rounds N fit the vertices to the cloud's points by least squares, N rounds\n"
+    "                         (default 4; 0: off)\n"
     "  --index-points K       index at most K cloud points per vertex for the edge swap and the\n"
     "                         finishing stage (default 64; 0: every point)\n"
     "  --settle X             X * n iterations without topology changes at the end (default 0)\n"
@@ -177,8 +182,8 @@ int run_reconstruct(int argc, char** argv) {
         argc, argv, 2,
         {"--no-edge-swap", "--no-fold-guard", "--no-solid-start", "--no-finish", "--quiet", "--ascii", "--save-on-interrupt"},
         {"-o", "--output", "--vertices", "--alpha-w", "--alpha-n", "--alpha", "--cvs", "--cec", "--seed", "--snapshots",
-         "--stats", "--settle", "--finish-rounds", "--fit-rounds", "--index-points", "--topology", "--min-hole",
-         "--threads"});
+         "--stats", "--settle", "--finish-rounds", "--fit-rounds", "--surface-fit-rounds", "--index-points",
+         "--topology", "--min-hole", "--adaptivity", "--threads"});
     if (args.positional().size() != 1) throw UsageError("reconstruct takes one INPUT file");
     const std::string input = args.positional()[0];
     const std::string output = args.has("-o") ? args.text("-o") : args.text("--output");
@@ -214,6 +219,7 @@ int run_reconstruct(int argc, char** argv) {
     p.cec = bounded_count("--cec", p.cec);
     p.settle = args.number("--settle", p.settle);
     p.min_hole = float(args.number("--min-hole", p.min_hole));
+    p.adaptivity = args.number("--adaptivity", p.adaptivity);
     p.seed = args.count("--seed", p.seed);
     p.edge_swap = !args.has("--no-edge-swap");
     p.fold_guard = !args.has("--no-fold-guard");
@@ -221,6 +227,7 @@ int run_reconstruct(int argc, char** argv) {
     p.finish = !args.has("--no-finish");
     p.finish_rounds = bounded_count("--finish-rounds", p.finish_rounds);
     p.fit_rounds = bounded_count("--fit-rounds", p.fit_rounds);
+    p.surface_fit_rounds = bounded_count("--surface-fit-rounds", p.surface_fit_rounds);
     p.index_points_per_vertex = bounded_count("--index-points", p.index_points_per_vertex);
     p.threads = bounded_count("--threads", p.threads);
     try {

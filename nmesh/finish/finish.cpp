@@ -34,7 +34,8 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
     if (options.project) surface = std::make_unique<CloudSurface>(cloud, mesh, cloud_index, options.point_sides);
     const CloudSurface* pull = surface.get();
     // Progress over the stage's round budget: the regularisation and fit rounds, then the repair's.
-    const double budget = double(options.rounds + options.fit_rounds + std::max(options.repair_max_rounds, 0));
+    const double budget = double(options.rounds + options.fit_rounds + std::max(options.repair_max_rounds, 0) +
+                                 std::max(options.surface_fit_rounds, 0));
     double done = 0.0;
     const auto step = [&](double rounds) {
         done += rounds;
@@ -155,6 +156,17 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
         if (pull && report.intersecting_pairs_after == 0 && report.folded_edges_after == 0 &&
             options.fold_dihedral_deg <= kCoverFoldDeg)
             report.cover_moves = cover_uncovered_points(mesh, *pull, options.cover_iterations).moves;
+    }
+    // The surface fit, last, on whatever the repair left: the corners of a defect left stay, and no move that
+    // makes a new one is kept. Known clean when the repair left none at its fold limit.
+    if (pull && options.surface_fit_rounds > 0) {
+        SurfaceFitOptions fit;
+        fit.rounds = options.surface_fit_rounds;
+        fit.fold_dihedral_deg = options.fold_dihedral_deg;
+        fit.known_clean =
+            options.repair_max_rounds > 0 && report.intersecting_pairs_after == 0 && report.folded_edges_after == 0;
+        report.surface_fit = fit_surface(mesh, *pull, fit);
+        step(options.surface_fit_rounds);
     }
     if (progress) progress(1.0);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -18,7 +18,11 @@
 //      of very long edges around each defect until none is left, then the smoothed vertices are
 //      pulled back towards the cloud wherever that creates no new defect. The repair is all or
 //      nothing: if a defect is left, or the estimated Hausdorff distance to the cloud would grow
-//      by more than half an edge, the mesh is put back as the regularisation left it.
+//      by more than half an edge, the mesh is put back as the regularisation left it;
+//   3. cover: vertices drawn out to the scan points the surface leaves uncovered (cover.h);
+//   4. surface fit: the vertices moved along their normals to where the triangles best match the
+//      scan points, a least-squares fit with a membrane on the moves (surface_fit.h), no move kept
+//      that makes a crossing or a fold.
 // When the repair does not succeed, the stage never returns a mesh with more intersecting
 // triangle pairs than the learnt one (see FinishReport::fallback).
 // The vertex count never changes (collapses and splits are balanced at once) and every
@@ -45,6 +49,7 @@
 #include "nmesh/finish/hausdorff_estimate.h"
 #include "nmesh/finish/regularise.h"
 #include "nmesh/finish/repair.h"
+#include "nmesh/finish/surface_fit.h"
 #include "nmesh/mesh/mesh.h"
 #include "nmesh/spatial/point_grid.h"
 
@@ -91,6 +96,10 @@ struct FinishOptions {
     // learning left short or the repair took back); only on a mesh the repair left without
     // defects, and only with `project`. 0 skips it.
     int cover_iterations = 3;
+    // Surface fit (the last step): rounds of fit_surface (nmesh/finish/surface_fit.h), which moves the
+    // vertices along their normals to where the triangles best match the scan points (a
+    // least-squares fit); only with `project`. 0 skips it.
+    int surface_fit_rounds = 4;
     // The side of the surface each cloud point was taken from (one unit normal per point of the
     // stage's cloud, in its order; nmesh/learn/sample_sides.h), or null: the points' normals then
     // come from the learnt mesh (CloudSurface).
@@ -109,6 +118,7 @@ struct FinishReport {
     bool repair_reverted = false;  // the repair did not succeed and was undone
     bool repair_declined = false;  // not tried: too many defects for a repair (kRepairMaxDefectShare)
     std::uint32_t cover_moves = 0;  // vertex moves of step 3 kept
+    SurfaceFitResult surface_fit;   // the last step
     // When the repair of the regularised mesh fails and that mesh has more intersecting pairs than
     // the learnt one, the stage falls back on the learnt mesh, repaired if possible.
     // Which mesh the stage returns: the regularised one (repaired if need be), the learnt one

@@ -93,12 +93,15 @@ public:
     // Step 5: tau_v += 1 and v's last stamp becomes a new one (later than mark()). O(1).
     // Precondition: contains(v). Throws ParameterError, changing nothing, when the stamps are
     // exhausted (2^48 - 1 signals and additions: a branch never taken in practice).
-    void signal(std::uint32_t v) {
+    void signal(std::uint32_t v) { signal(v, 1.0); }
+    // The same with tau_v += weight (weight > 0, at most a few thousand): a signal that counts
+    // for more than one win (Parameters::adaptivity).
+    void signal(std::uint32_t v, double weight) {
         assert(contains(v));
         const std::uint64_t stamps = next_stamps();
         Node& n = nodes_[v];
         const std::uint64_t old_key = bucket_key(n);
-        const double raw = current_raw(n) + scale_;
+        const double raw = current_raw(n) + scale_ * weight;
         n.raw = raw;
         n.stamp_epoch = stamps | (epoch_ & kEpochMask);
         stamps_ = stamps;

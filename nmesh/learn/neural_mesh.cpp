@@ -201,7 +201,18 @@ void NeuralMesh::smooth_neighbourhood(const std::uint32_t* ring, std::uint32_t k
 void NeuralMesh::update(Vertex w, const Vec3& x, const std::uint32_t* ring, std::uint32_t k, bool prefetched) {
     move_winner(w, x, ring, k);                 // step 3
     smooth_neighbourhood(ring, k, prefetched);  // step 4
-    activity_.signal(w.idx);                    // step 5, eq. (6): tau_w += 1
+    if (adaptive_) {
+        // Beyond the paper (Parameters::adaptivity, from a start that has the shape: keep_genus):
+        // the signal weighs the winner's distance to the sample (after step 3) against its
+        // running mean, so that the vertices nearest to samples the mesh does not reach yet (a
+        // tip, a tail, a sharp bend) split sooner; from kAdaptiveFrom vertices on.
+        const float d2 = squared_distance(x, mesh_.position(w));
+        mean_d2_ += (d2 - mean_d2_) * kMeanRate;
+        const double error = mesh_.n_vertices() >= kAdaptiveFrom ? double(d2 / std::max(mean_d2_, 1e-30f)) : 0.0;
+        activity_.signal(w.idx, 1.0 + params_.adaptivity * error);  // step 5, eq. (6), weighted
+    } else {
+        activity_.signal(w.idx);  // step 5, eq. (6): tau_w += 1
+    }
     activity_.decay();                          // step 6, eq. (7): tau_v *= alpha for all v
     ++iteration_;
     ++stats_.iterations;

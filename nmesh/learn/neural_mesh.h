@@ -37,6 +37,9 @@ public:
     // the shape, and the guard costs a sixth more instructions per iteration. Choice: 4096, which
     // left the same runs defective as the guard at every size (docs/algorithm.md).
     static constexpr std::uint32_t kFoldGuardBelow = 4096;
+    // Parameters::adaptivity weighs the signals from this many vertices on (the size of the first
+    // topology search), once the coarse mesh has settled on the shape.
+    static constexpr std::uint32_t kAdaptiveFrom = 512;
 
     // The engine learns `transform(p)` for the points p of `points`, which must outlive it.
     // The transformed points should be normalised (reconstruct() centres them and scales them
@@ -73,7 +76,12 @@ public:
     std::uint32_t learn_topology();
     // The handle search off from here on (the bridges stay): for a start whose genus the cloud's
     // solid already gave (solid_start.h), where a search would only add handles.
-    void keep_genus() { search_handles_ = false; }
+    // Parameters::adaptivity applies from here on too: the start has the shape's parts, which a
+    // growth from the tetrahedron finds by the density of the samples alone.
+    void keep_genus() {
+        search_handles_ = false;
+        adaptive_ = params_.adaptivity > 0.0;
+    }
     // Beyond the paper: the side of the surface each point was taken from, a unit normal per
     // point (in the transformed space) or 0 where it is not known (sample_sides.h). From here on a
     // sample whose winner's fan faces away from its side is not learnt (Statistics::side_skips):
@@ -157,6 +165,10 @@ private:
     std::uint32_t ahead_ids_[2] = {};  // their indices in the cloud
     std::uint32_t sample_id_ = 0;      // the index of the sample next_sample() returned last
     const Vec3* sides_ = nullptr;      // set_sample_sides
+    bool adaptive_ = false;            // keep_genus with Parameters::adaptivity above 0
+    float mean_d2_ = 0.0f;             // Parameters::adaptivity: the running mean of the squared
+                                       // winner distances, over about the last 1 / kMeanRate
+    static constexpr float kMeanRate = 1.0f / 1024.0f;
     std::uint32_t ahead_index_ = 0;  // the index of the one after them, drawn in advance
     std::uint64_t ahead_cell_ = 0;   // ahead_[1]'s grid cell (VertexGrid::prefetch_query)
     // From this many vertices on, where the mesh no longer fits in the cache, each iteration

@@ -37,9 +37,13 @@ void Parameters::validate() const {
     if (!(settle >= 0.0 && settle <= 1e6)) bad("settle", "must be in [0, 1e6], got " + std::to_string(settle));
     if (finish_rounds > 1000) bad("finish_rounds", "must be in [0, 1000], got " + std::to_string(finish_rounds));
     if (fit_rounds > 100) bad("fit_rounds", "must be in [0, 100], got " + std::to_string(fit_rounds));
+    if (surface_fit_rounds > 100)
+        bad("surface_fit_rounds", "must be in [0, 100], got " + std::to_string(surface_fit_rounds));
     if (topology != Topology::sphere && topology != Topology::closed && topology != Topology::open)
         bad("topology", "must be Topology::sphere, closed or open");
     if (fit_rounds > 0 && !finish) bad("fit_rounds", "needs the finishing stage (finish), which is off");
+    if (!(adaptivity >= 0.0 && adaptivity <= 100.0))
+        bad("adaptivity", "must be in [0, 100], got " + std::to_string(adaptivity));
     if (threads > kMaxThreads)
         bad("threads", "must be in [0, " + std::to_string(kMaxThreads) + "] (0: the machine's cores), got " +
                            std::to_string(threads));

@@ -401,64 +401,72 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform, st
     // The grids, each shifted by a fraction of a cell: a tunnel between two cells' corners (the
     // grid's own) comes and goes as the grid moves, a handle of the object does not.
     constexpr int kGrids = int(std::size(kGridShifts));
-    static_assert(kGrids == 3, "two grids read first, the third when they disagree");
     std::array<Grid, kGrids> grids;
-    std::array<std::vector<std::uint8_t>, kGrids> dist, level, state;
-    for (int k = 0; k < kGrids; ++k) {
+    std::array<std::vector<std::uint8_t>, kGrids> dist, level;
+    // Per grid, the cells counted by (distance, outside level): whether an offset walls round is
+    // read from them without a pass over the cells. A grid is prepared when first asked for.
+    std::array<std::vector<std::uint32_t>, kGrids> counts;
+    const auto prepare = [&](int k) {
+        if (!counts[k].empty()) return;
         grids[k] = g;
         grids[k].origin = g.origin + kGridShifts[k] * g.h;
-    }
-    // A grid's distances and outside levels, made when a reading first needs them (on `inner`
-    // threads: the distance transform's lines; the flood is one thread's): the first two grids'
-    // at once, side by side, and the third's with them on three threads or more, else when a
-    // reading first needs it (where the first two agree on a genus at every offset, never).
-    const unsigned cores = resolve_threads(threads);
-    const int first = cores >= 3 ? 3 : 2;
-    const auto prepare = [&](int k, unsigned inner) {
-        if (!dist[k].empty()) return;
-        dist[k] = distances(grids[k], p, inner);
+        dist[k] = distances(grids[k], p, threads);
         level[k] = outside_levels(grids[k].dims, dist[k]);
+        counts[k].assign(256 * 256, 0);
+        for (std::size_t i = 0; i < dist[k].size(); ++i) ++counts[k][std::size_t(dist[k][i]) * 256 + level[k][i]];
     };
-    for_each_task(std::size_t(first), cores, [&](std::size_t k) { prepare(int(k), std::max(1u, cores / first)); });
-    // One grid's reading at one offset: whether it walls round, its components and genus.
-    const auto read = [&](int k, float offset) {
-        solid_detail::GridReading r;
-        const auto [shell, inside] = classify(dist[k], level[k], offset * d / g.h, state[k]);
-        r.walled = double(inside) >= kMinInside * double(shell);
-        if (r.walled) std::tie(r.components, r.genus) = surface_topology(grids[k], state[k]);
-        return r;
+    // The shell (distance at most r^2) and the inside (beyond the shell, outside level at most r^2)
+    // of grid k at an offset of r cells.
+    const auto walled_round = [&](int k, float r) {
+        prepare(k);
+        const float r2 = r * r;
+        std::uint64_t shell = 0, inside = 0;
+        for (int dv = 0; dv < 256; ++dv)
+            for (int lv = 0; lv < 256; ++lv) {
+                const std::uint32_t n = counts[k][std::size_t(dv) * 256 + std::size_t(lv)];
+                if (float(dv) <= r2) shell += n;
+                else if (float(lv) <= r2) inside += n;
+            }
+        return double(inside) >= kMinInside * double(shell);
     };
     // The reading at each offset, smallest first: what the grids agree on (a majority of them
     // walled round, one component, the same genus), until two offsets in a row agree on the same
     // genus. A genus that holds over a range of offsets is the object's (persistence); one that
     // holds at a single offset is the sampling's (the gaps closing) or the grid's.
+    std::vector<std::uint8_t> state;
+    // A genus of 0 has no handle to doubt: read at the first offset at which the first grid walls
+    // round, it is taken as it is (the other grids and offsets are there to refuse handles that
+    // are the grid's own or the sampling's). The clouds of genus 0 read it so, at the same offset
+    // as with the votes (docs/algorithm.md), for a third of the work.
+    for (const float offset : kOffsets) {
+        if (!walled_round(0, offset * d / g.h)) continue;
+        classify(dist[0], level[0], offset * d / g.h, state);
+        if (surface_topology(grids[0], state) == std::make_pair(std::uint32_t(1), 0)) {
+            out.walled = out.stable = true;
+            out.offset = offset;
+            out.components = 1;
+            out.genus = 0;
+        }
+        break;
+    }
     int previous = -1;  // the genus agreed at the previous offset, -1 when none
     float previous_offset = 0.0f;
     for (const float offset : kOffsets) {
+        if (out.stable) break;
         // A genus read beyond twice the offset that first walls round would be that of a solid
         // closing gaps twice as wide as the sampling's own: not the object's.
         if (out.walled && offset > 2.0f * out.offset) break;
-        // The first two grids' readings side by side (the third's with them on three threads);
-        // the third's when they do not agree on a genus (two that agree are a majority already).
-        // Taken in their order.
-        std::array<solid_detail::GridReading, kGrids> readings;
-        for_each_task(std::size_t(first), cores, [&](std::size_t k) { readings[k] = read(int(k), offset); });
-        const auto genus_of = [&](int k) {
-            const solid_detail::GridReading& r = readings[std::size_t(k)];
-            return !r.walled ? -1 : r.components == 1 ? r.genus : -2;  // -2: several components
-        };
-        const bool third = !(genus_of(0) >= 0 && genus_of(0) == genus_of(1));
-        if (third && first < 3) {
-            prepare(2, cores);
-            readings[2] = read(2, offset);
-        }
-        int genera[kGrids] = {-1, -1, -1};
+        int genera[kGrids];
         int walled = 0;
-        for (int k = 0; k < (third ? kGrids : 2); ++k) {
-            genera[k] = genus_of(k);
-            if (!readings[std::size_t(k)].walled) continue;
+        for (int k = 0; k < kGrids; ++k) genera[k] = -1;
+        for (int k = 0; k < kGrids; ++k) {
+            // Two grids that agree are a majority already.
+            if (k == 2 && genera[0] >= 0 && genera[0] == genera[1]) break;
+            if (!walled_round(k, offset * d / g.h)) continue;
+            classify(dist[k], level[k], offset * d / g.h, state);
             ++walled;
-            const std::uint32_t components = readings[std::size_t(k)].components;
+            const auto [components, genus] = surface_topology(grids[k], state);
+            genera[k] = components == 1 ? genus : -2;  // -2: several components
             if (!out.walled || components != 1) out.components = components;
         }
         if (walled > 0 && !out.walled) {
@@ -484,28 +492,27 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform, st
     }
     if (!out.stable) return out;
     if (out.genus == 0 && out.offset > kMaxShapeOffset) return out;  // no start: no surface to build
-    // The surface: from cells twice as large when those give the same topology at that offset or
-    // the next (a quarter of the triangles to simplify), else from the first grid that reads the
-    // agreed genus at that offset.
-    const float next = *(std::find(std::begin(kOffsets), std::end(kOffsets), out.offset) + 1);
-    for (int k = 0; k < kGrids && out.surface.triangles.empty(); ++k) {
-        Grid coarse = grid_over(box, 2.0f * g.h, largest + 4.0f * g.h);
-        coarse.origin = coarse.origin + kGridShifts[k] * g.h;
-        const std::vector<std::uint8_t> coarse_dist = distances(coarse, p, cores);
+    // The surface: from cells twice as large (the unshifted grid's) when those give the same
+    // topology at that offset or the next (a quarter of the triangles to simplify), else from the
+    // first grid that reads the agreed genus at that offset. A reading holds at two offsets, so
+    // the next one exists.
+    const float* next = std::find(std::begin(kOffsets), std::end(kOffsets), out.offset) + 1;
+    {
+        const Grid coarse = grid_over(box, 2.0f * g.h, largest + 4.0f * g.h);
+        const std::vector<std::uint8_t> coarse_dist = distances(coarse, p, threads);
         const std::vector<std::uint8_t> coarse_level = outside_levels(coarse.dims, coarse_dist);
-        for (const float offset : {out.offset, next}) {
-            classify(coarse_dist, coarse_level, offset * d / coarse.h, state[0]);
-            if (surface_topology(coarse, state[0]) != std::make_pair(std::uint32_t(1), out.genus)) continue;
-            out.surface = outer_surface(coarse, state[0]);
+        for (const float offset : {out.offset, next != std::end(kOffsets) ? *next : out.offset}) {
+            classify(coarse_dist, coarse_level, offset * d / coarse.h, state);
+            if (surface_topology(coarse, state) != std::make_pair(std::uint32_t(1), out.genus)) continue;
+            out.surface = outer_surface(coarse, state);
             break;
         }
-        if (!out.surface.triangles.empty() || k > 0) break;  // the shifted coarse grids: not worth it
     }
     for (int k = 0; k < kGrids && out.surface.triangles.empty(); ++k) {
-        prepare(k, cores);
-        classify(dist[k], level[k], out.offset * d / g.h, state[0]);
-        if (surface_topology(grids[k], state[0]) == std::make_pair(std::uint32_t(1), out.genus))
-            out.surface = outer_surface(grids[k], state[0]);
+        prepare(k);
+        classify(dist[k], level[k], out.offset * d / g.h, state);
+        if (surface_topology(grids[k], state) == std::make_pair(std::uint32_t(1), out.genus))
+            out.surface = outer_surface(grids[k], state);
     }
     return out;
 }

@@ -30,7 +30,7 @@
 //   - the start is the outer surface simplified to start_vertices(target) vertices (simplify);
 //   - the grid has at most kMaxVoxels cells (larger voxels for a cloud that would need more):
 //     one byte each for the distances, the states and the components' flood, 50 MB at most
-//     per grid (the first two grids are read side by side, the third only where they disagree).
+//     per grid (a grid is made when a reading first needs it: a genus-0 cloud reads one).
 #pragma once
 
 #include <algorithm>
@@ -88,7 +88,7 @@ struct SolidSurface {
 };
 
 // The solid `points` (through `transform`) wall round, and its outer surface. O(P + voxels).
-// `threads` (0: the machine's cores) read the shifted grids side by side: the same result for
+// `threads` (0: the machine's cores) share each distance transform's lines: the same result for
 // every count.
 SolidSurface solid_surface(PointSpan points, const PointTransform& transform, std::uint32_t threads = 1);
 

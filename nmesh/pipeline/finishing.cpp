@@ -10,6 +10,8 @@ namespace nmesh::pipeline {
 // One default for the finishing stage's rounds, whether it is run through reconstruct() or alone.
 static_assert(FinishOptions{}.rounds == int(Parameters{}.finish_rounds), "two defaults for the finishing rounds");
 static_assert(FinishOptions{}.fit_rounds == int(Parameters{}.fit_rounds), "two defaults for the centroid fit");
+static_assert(FinishOptions{}.surface_fit_rounds == int(Parameters{}.surface_fit_rounds),
+              "two defaults for the surface fit");
 
 const PointGrid& cloud_index_of(std::shared_ptr<PointGrid>& cloud_index, PointSpan cloud, const Normalization& norm,
                                 const Parameters& params, Statistics& stats) {
@@ -29,6 +31,7 @@ bool finish_stage(const Mesh& learnt, std::shared_ptr<PointGrid>& cloud_index, P
     FinishOptions options;
     options.rounds = int(params.finish_rounds);
     options.fit_rounds = int(params.fit_rounds);
+    options.surface_fit_rounds = int(params.surface_fit_rounds);
     if (!repair) options.repair_max_rounds = 0;
     options.off_cloud_last_resort = last_resort;
     const std::vector<Vec3> points = index.indexed_points();

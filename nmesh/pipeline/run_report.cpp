@@ -60,7 +60,9 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << ", \"fold_guard\": " << (p.fold_guard ? "true" : "false")
       << ", \"solid_start\": " << (p.solid_start ? "true" : "false") << ", \"topology\": \"" << topology_name(p.topology)
       << "\", \"settle\": " << p.settle << ", \"finish\": " << (p.finish ? "true" : "false")
-      << ", \"finish_rounds\": " << p.finish_rounds << ", \"fit_rounds\": " << p.fit_rounds << ", \"min_hole\": " << p.min_hole
+      << ", \"finish_rounds\": " << p.finish_rounds << ", \"fit_rounds\": " << p.fit_rounds
+      << ", \"surface_fit_rounds\": " << p.surface_fit_rounds << ", \"min_hole\": " << p.min_hole
+      << ", \"adaptivity\": " << p.adaptivity
       << ", \"index_points_per_vertex\": " << p.index_points_per_vertex
       << ", \"threads\": " << resolve_threads(p.threads) << "},\n"
       << "  \"vertices\": " << r.mesh.positions.size() << ",\n"

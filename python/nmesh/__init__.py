@@ -189,11 +189,13 @@ def reconstruct(
     fold_guard: bool = True,
     solid_start: bool = True,
     min_hole: float = 0.0,
+    adaptivity: float = 0.0,
     finish: bool = True,
     seed: int = 1,
     progress: Optional[ProgressCallback] = None,
     finish_rounds: int = 10,
     fit_rounds: int = 0,
+    surface_fit_rounds: int = 4,
     settle: float = 0.0,
     index_points_per_vertex: int = 64,
     threads: int = 0,
@@ -224,6 +226,9 @@ def reconstruct(
     min_hole: open: the smallest hole to open, the distance from its middle to the nearest point
         in local point spacings (0: the default rule, which keeps the sampling's gaps and holes a
         few spacings across closed).
+    adaptivity: closed and open, from the solid's start: a win counts 1 + adaptivity * (the
+        winner's distance / its mean)^2, so that tips and bends get vertices sooner (0: the paper's
+        signal counter).
     finish: the finishing stage (flips, relaxation onto the cloud, repair of folds).
     seed: the random seed (an integer in [0, 2**64 - 1]).
     progress: called about every 65,536 iterations and once when the learning ends, as
@@ -232,6 +237,8 @@ def reconstruct(
         then returns the mesh reached so far with `cancelled` True (no exception). An exception
         raised by the callback cancels the learning and propagates out of reconstruct.
     finish_rounds, fit_rounds: the finishing stage's regularisation and centroid-fit rounds.
+    surface_fit_rounds: the finishing stage's surface fit (the vertices moved to where the mesh
+        best matches the points, least squares), in rounds; 0 turns it off.
     settle: settle * n iterations without topology changes once the target size is reached.
     index_points_per_vertex: cloud points indexed per target vertex (0: all of them).
     threads: threads for the work beside the learning (the solid's reading, the output check,
@@ -271,11 +278,13 @@ def reconstruct(
         fold_guard=_flag("fold_guard", fold_guard),
         solid_start=_flag("solid_start", solid_start),
         min_hole=_real("min_hole", min_hole),
+        adaptivity=_real("adaptivity", adaptivity),
         finish=_flag("finish", finish),
         seed=_count("seed", seed, _UINT64_MAX),
         settle=_real("settle", settle),
         finish_rounds=_count("finish_rounds", finish_rounds),
         fit_rounds=_count("fit_rounds", fit_rounds),
+        surface_fit_rounds=_count("surface_fit_rounds", surface_fit_rounds),
         index_points_per_vertex=_count("index_points_per_vertex", index_points_per_vertex),
         threads=_count("threads", threads),
         progress=progress,

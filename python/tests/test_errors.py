@@ -23,6 +23,7 @@ import nmesh
         ({"settle": -1.0}, "settle"),
         ({"finish_rounds": 1001}, "finish_rounds"),
         ({"fit_rounds": 1, "finish": False}, "fit_rounds"),
+        ({"surface_fit_rounds": 101}, "surface_fit_rounds"),
         ({"seed": -1}, "seed"),
         ({"seed": 2**64}, "seed"),
         ({"topology": "plane"}, "topology"),

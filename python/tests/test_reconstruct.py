@@ -86,7 +86,8 @@ def test_float32_points_are_not_copied(bunny: np.ndarray) -> None:
     assert nmesh._as_points(bunny) is bunny
     assert nmesh._as_points(bunny.astype(np.float64)) is not bunny
     # ...and the extension reads only such arrays, in place: it never converts one itself.
-    args = (400, 0.08, 0.01, 0.95, 100, 20, True, True, 1, 0.0, 10, 0, 64, "closed", True, True, 0.0, 1, None, False)
+    args = (400, 0.08, 0.01, 0.95, 100, 20, True, True, 1, 0.0, 10, 0, 4, 64, "closed", True, True, 0.0, 0.0, 1, None,
+            False)
     for other in (bunny.astype(np.float64), np.asfortranarray(bunny), bunny[::2], bunny[:, :2]):
         with pytest.raises(TypeError, match="float32 array of shape"):
             _nmesh.reconstruct(other, *args)
@@ -106,8 +107,8 @@ def test_seed_and_parameters_reach_the_library(bunny: np.ndarray, bunny_mesh: nm
                                     "cvs": 80, "cec": 15, "edge_swap": True, "fold_guard": True, "solid_start": True,
                                     "topology": "closed",
                                     "settle": 0, "finish": False,
-                                    "finish_rounds": 10, "fit_rounds": 0, "min_hole": 0, "index_points_per_vertex": 0,
-                                    "threads": 2}
+                                    "finish_rounds": 10, "fit_rounds": 0, "surface_fit_rounds": 4, "min_hole": 0,
+                                    "adaptivity": 0, "index_points_per_vertex": 0, "threads": 2}
     assert params["seconds_finish"] == 0
 
 
@@ -142,7 +143,7 @@ def test_every_parameter_is_a_keyword() -> None:
     header = (Path(__file__).resolve().parents[2] / "nmesh" / "parameters.h").read_text()
     body = header[header.index("struct Parameters {"):header.index("void validate() const;")]
     fields = set(re.findall(r"^\s+[\w:]+ (\w+) = ", body, re.M))
-    assert "fold_guard" in fields and "threads" in fields and len(fields) == 18
+    assert "fold_guard" in fields and "threads" in fields and len(fields) == 20
     keywords = set(inspect.signature(nmesh.reconstruct).parameters) - {"points", "progress", "metrics"}
     assert {"vertices" if f == "target_vertices" else f for f in fields} == keywords
 
