@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <mutex>
@@ -19,6 +20,7 @@
 #include "cloud_fixtures.h"
 #include "mesh_fixtures.h"
 #include "nmesh/error.h"
+#include "nmesh/finish/defect_tracker.h"
 #include "nmesh/geometry/triangle_bvh.h"
 #include "nmesh/geometry/triangle_intersection.h"
 #include "nmesh/learn/sample_sides.h"
@@ -285,9 +287,42 @@ TEST_CASE("the output check's counts and the inward flags are the same for any t
     }
 }
 
+TEST_CASE("the finishing stage's search for defects finds the same pairs and folds for any thread count") {
+    // An icosphere whose vertices are moved by up to about an edge (0.038) each way: crossing
+    // pairs and folds all over it, between small triangles (every bucket range of the grid has
+    // some), and a vertex pushed through the opposite side (a triangle kept apart as large).
+    IndexedMesh shape = icosphere(5);
+    std::uint32_t state = 12345;
+    const auto noise = [&] {
+        state = state * 1664525u + 1013904223u;
+        return (float(state >> 8) / float(1u << 24) - 0.5f) * 0.06f;
+    };
+    for (Vec3& v : shape.positions) v = v + Vec3(noise(), noise(), noise());
+    shape.positions[0] = shape.positions[0] * -1.2f;
+    Mesh mesh = Mesh::from_indexed(shape);
+    const finish_detail::DefectTracker one(mesh, std::cos(2.0f), false, 1);
+    CHECK(one.pairs().size() > 1000);
+    // The pairs of the whole grid in one pass, as the search was before it was split.
+    const std::vector<Face> faces = finish_detail::alive_faces(mesh);
+    const finish_detail::FaceGrid grid(mesh, faces, finish_detail::grid_cell(mesh, faces));
+    std::vector<std::pair<Face, Face>> all;
+    grid.for_each_pair([&](Face f, Face g) {
+        if (finish_detail::mesh_faces_intersect(mesh, f, g)) all.emplace_back(f, g);
+    });
+    finish_detail::sort_unique(all);
+    CHECK(one.pairs() == all);
+    CHECK(!one.folds().empty());
+    for (const std::uint32_t threads : {2u, 4u, 0u}) {
+        CAPTURE(threads);
+        const finish_detail::DefectTracker more(mesh, std::cos(2.0f), false, threads);
+        CHECK(more.pairs() == one.pairs());
+        CHECK(more.folds() == one.folds());
+    }
+}
+
 TEST_CASE("the solid's reading and the samples' sides are the same for any thread count") {
-    // A torus (the first two grids read side by side; three read at once from three threads) and
-    // the bunny (the third grid needed where the first two do not agree).
+    // A torus (its grids' distance transforms shared among the threads) and the bunny (read from
+    // its first grid alone).
     const PointCloud torus = torus_cloud(20000);
     const PointCloud bunny = bundled_bunny();
     for (const PointCloud* cloud : {&torus, &bunny}) {

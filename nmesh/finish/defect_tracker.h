@@ -11,6 +11,7 @@
 #include "nmesh/finish/mesh_queries.h"
 #include "nmesh/finish/repair.h"  // split_edge, for restore_vertex_count
 #include "nmesh/mesh/mesh.h"
+#include "nmesh/util/parallel.h"
 
 namespace nmesh::finish_detail {
 
@@ -24,13 +25,27 @@ namespace nmesh::finish_detail {
 class DefectTracker {
 public:
     // `known_clean`: the caller knows the mesh has no defect (the repair's result), and the
-    // search over the whole mesh, most of the construction's cost, is skipped.
-    DefectTracker(Mesh& mesh, float cos_limit, bool known_clean = false) : mesh_(mesh), cos_limit_(cos_limit) {
+    // search over the whole mesh, most of the construction's cost, is skipped. That search runs
+    // on `threads` (0: the machine's cores), the grid's buckets in fixed ranges, each range's pairs
+    // kept apart and joined in the ranges' order: the same pairs for any count.
+    DefectTracker(Mesh& mesh, float cos_limit, bool known_clean = false, std::uint32_t threads = 1)
+        : mesh_(mesh), cos_limit_(cos_limit) {
         const std::vector<Face> faces = alive_faces(mesh);
         cell_ = grid_cell(mesh, faces);
         grid_ = std::make_unique<FaceGrid>(mesh, faces, cell_);
         if (known_clean) return;
-        grid_->for_each_pair([&](Face f, Face g) {
+        constexpr std::uint32_t kBucketsPerChunk = 1024;
+        const std::uint32_t buckets = grid_->buckets();
+        std::vector<std::vector<std::pair<Face, Face>>> found((buckets + kBucketsPerChunk - 1) / kBucketsPerChunk);
+        const Mesh& shape = mesh;
+        for_chunks(buckets, kBucketsPerChunk, threads, [&](std::size_t begin, std::size_t end) {
+            auto& mine = found[begin / kBucketsPerChunk];
+            grid_->for_each_pair_in_buckets(std::uint32_t(begin), std::uint32_t(end), [&](Face f, Face g) {
+                if (mesh_faces_intersect(shape, f, g)) mine.emplace_back(f, g);
+            });
+        });
+        for (const auto& part : found) pairs_.insert(pairs_.end(), part.begin(), part.end());
+        grid_->for_each_large_pair([&](Face f, Face g) {
             if (mesh_faces_intersect(mesh_, f, g)) pairs_.emplace_back(f, g);
         });
         sort_unique(pairs_);

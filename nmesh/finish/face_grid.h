@@ -62,11 +62,23 @@ public:
     // Calls visit(f, g) once for every unordered pair of faces of the grid whose boxes overlap.
     template <class Visit>
     void for_each_pair(Visit&& visit) const {
-        for (std::uint32_t k = 0; k + 1 < start_.size(); ++k)
+        for_each_pair_in_buckets(0, buckets(), visit);
+        for_each_large_pair(visit);
+    }
+    // The same, in two parts: the pairs reported from buckets [begin, end) (in bucket order: the
+    // buckets split into ranges and their pairs joined in the ranges' order give for_each_pair's),
+    // then those of the faces kept apart.
+    std::uint32_t buckets() const { return std::uint32_t(start_.size() - 1); }
+    template <class Visit>
+    void for_each_pair_in_buckets(std::uint32_t begin, std::uint32_t end, Visit&& visit) const {
+        for (std::uint32_t k = begin; k < end; ++k)
             for (std::uint32_t i = start_[k]; i < start_[k + 1]; ++i)
                 for (std::uint32_t j = i + 1; j < start_[k + 1]; ++j)
                     if (overlap(entries_[i].box, entries_[j].box) && owner(entries_[i].box, entries_[j].box) == k)
                         visit(entries_[i].face, entries_[j].face);
+    }
+    template <class Visit>
+    void for_each_large_pair(Visit&& visit) const {
         for (std::size_t i = 0; i < large_.size(); ++i) {
             for (std::size_t j = i + 1; j < large_.size(); ++j)
                 if (overlap(large_[i].box, large_[j].box)) visit(large_[i].face, large_[j].face);

@@ -85,7 +85,7 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
     }
     for (int r = 0; r < options.rounds && !regularisation_over(); ++r) {
         report.flips += flip_to_delaunay(mesh, options.flip_max_dihedral_deg);
-        relax_tangentially(mesh, pull, pull ? &anchors : nullptr);
+        relax_tangentially(mesh, pull, pull ? &anchors : nullptr, options.threads);
         ++report.relax_passes;
         step(1);
     }
@@ -104,7 +104,7 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
         };
         RepairResult r = repair_folds_and_intersections(mesh, options.repair_max_rounds, options.fold_dihedral_deg,
                                                         pull, 0.5 * seconds_left(), on_round,
-                                                        options.repair_max_defect_share);
+                                                        options.repair_max_defect_share, options.threads);
         report.intersecting_pairs_before = r.intersecting_pairs_before;
         report.folded_edges_before = r.folded_edges_before;
         report.repair_rounds = r.rounds;
@@ -125,7 +125,7 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
             last_rounds = 0;
             RepairResult ra = repair_folds_and_intersections(alternative, options.repair_max_rounds,
                                                              options.fold_dihedral_deg, pull, seconds_left(), on_round,
-                                                             options.repair_max_defect_share);
+                                                             options.repair_max_defect_share, options.threads);
             report.repair_rounds += ra.rounds;
             if (ra.off_cloud && (!off_cloud || ra.off_cloud_rise < off_cloud_rise)) {
                 off_cloud = std::move(ra.off_cloud);
@@ -163,6 +163,7 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
         SurfaceFitOptions fit;
         fit.rounds = options.surface_fit_rounds;
         fit.fold_dihedral_deg = options.fold_dihedral_deg;
+        fit.threads = options.threads;
         fit.known_clean =
             options.repair_max_rounds > 0 && report.intersecting_pairs_after == 0 && report.folded_edges_after == 0;
         report.surface_fit = fit_surface(mesh, *pull, fit);

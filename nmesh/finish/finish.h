@@ -97,9 +97,13 @@ struct FinishOptions {
     // defects, and only with `project`. 0 skips it.
     int cover_iterations = 3;
     // Surface fit (the last step): rounds of fit_surface (nmesh/finish/surface_fit.h), which moves the
-    // vertices along their normals to where the triangles best match the scan points (a
-    // least-squares fit); only with `project`. 0 skips it.
+    // vertices to where the triangles best match the scan points (a least-squares fit); only with
+    // `project`. 0 skips it.
     int surface_fit_rounds = 4;
+    // Threads (0: the machine's cores) for the work that is independent vertex by vertex or point
+    // by point: the relaxation's new positions and the surface fit's nearest triangles. The
+    // results are combined in the same order for any count: the same mesh, bit for bit.
+    std::uint32_t threads = 1;
     // The side of the surface each cloud point was taken from (one unit normal per point of the
     // stage's cloud, in its order; nmesh/learn/sample_sides.h), or null: the points' normals then
     // come from the learnt mesh (CloudSurface).

@@ -9,6 +9,7 @@
 #include "nmesh/finish/mesh_queries.h"
 #include "nmesh/geometry/closest_point.h"
 #include "nmesh/util/math_constants.h"
+#include "nmesh/util/parallel.h"
 
 namespace nmesh {
 
@@ -63,6 +64,9 @@ std::uint64_t flip_to_delaunay(Mesh& mesh, float max_dihedral_deg) {
 
 namespace {
 
+// The relaxation's chunk of vertices for a thread: large enough that handing it out costs nothing.
+constexpr std::size_t kVerticesPerChunk = 512;
+
 // Whether moving v to q keeps `anchor` within kAnchorReach of v's mean edge length of v's
 // triangles (with v at q, its neighbours where they are), or v's triangles fold.
 bool keeps_anchor(const Mesh& mesh, Vertex v, const Vec3& q, const Vec3& anchor) {
@@ -89,16 +93,19 @@ bool keeps_anchor(const Mesh& mesh, Vertex v, const Vec3& q, const Vec3& anchor)
 
 }  // namespace
 
-void relax_tangentially(Mesh& mesh, const CloudSurface* cloud, const Anchors* anchors) {
+void relax_tangentially(Mesh& mesh, const CloudSurface* cloud, const Anchors* anchors, std::uint32_t threads) {
     const std::vector<Vertex> verts = alive_vertices(mesh);
     std::vector<Vec3> next(verts.size());
     const float mean_edge = mean_edge_length(mesh);
-    for (std::size_t i = 0; i < verts.size(); ++i) {
-        const Vertex v = verts[i];
-        next[i] = relaxed_position(mesh, v, cloud, mean_edge);
-        if (anchors && anchors->held[v.idx] && !keeps_anchor(mesh, v, next[i], anchors->at[v.idx]))
-            next[i] = mesh.position(v);
-    }
+    const Mesh& before = mesh;
+    for_chunks(verts.size(), kVerticesPerChunk, threads, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            const Vertex v = verts[i];
+            next[i] = relaxed_position(before, v, cloud, mean_edge);
+            if (anchors && anchors->held[v.idx] && !keeps_anchor(before, v, next[i], anchors->at[v.idx]))
+                next[i] = before.position(v);
+        }
+    });
     for (std::size_t i = 0; i < verts.size(); ++i) mesh.set_position(verts[i], next[i]);
 }
 

@@ -41,7 +41,10 @@ struct Anchors {
     std::vector<Vec3> at;             // by vertex id
     std::vector<std::uint8_t> held;   // by vertex id: whether the vertex has an anchor
 };
-void relax_tangentially(Mesh& mesh, const CloudSurface* cloud = nullptr, const Anchors* anchors = nullptr);
+// Each vertex's new position is found from the mesh as it was (on `threads`, 0: the machine's
+// cores, vertex by vertex), then all are moved: the same result for any count.
+void relax_tangentially(Mesh& mesh, const CloudSurface* cloud = nullptr, const Anchors* anchors = nullptr,
+                        std::uint32_t threads = 1);
 
 // One damped Lloyd step of the centroids towards the cloud (see FinishOptions::fit_rounds).
 void fit_centroids(Mesh& mesh, const std::vector<Vec3>& cloud, float weight);

@@ -70,14 +70,15 @@ Vertex split_edge(Mesh& mesh, Halfedge h) {
 // fidelity where the tangle was (it followed the data, badly), but only locally.
 RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds, float fold_dihedral_deg,
                                             const CloudSurface* cloud, double seconds_limit,
-                                            const std::function<void(int rounds)>& on_round, float max_defect_share) {
+                                            const std::function<void(int rounds)>& on_round, float max_defect_share,
+                                            std::uint32_t threads) {
     const auto start = std::chrono::steady_clock::now();
     const auto out_of_time = [&] {
         return seconds_limit > 0.0 &&
                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >= seconds_limit;
     };
     RepairResult result;
-    DefectTracker tracker(mesh, std::cos(fold_dihedral_deg * kPiF / 180.0f));
+    DefectTracker tracker(mesh, std::cos(fold_dihedral_deg * kPiF / 180.0f), false, threads);
     result.intersecting_pairs_before = tracker.pairs().size();
     result.folded_edges_before = tracker.folds().size();
     result.intersecting_pairs = result.intersecting_pairs_before;

@@ -60,9 +60,11 @@ struct RepairResult {
 // `seconds_limit` (0: none) stops the rounds once that much wall time has passed since the call;
 // `on_round` (may be empty) is called after each round with the rounds done. A mesh with more
 // than `max_defect_share` of its triangles defective is declined (kRepairMaxDefectShare).
+// `threads` (0: the machine's cores) search the whole mesh for its defects at the start: the same
+// repair for any count.
 RepairResult repair_folds_and_intersections(Mesh& mesh, int max_rounds = 40, float fold_dihedral_deg = 120.0f,
                                             const CloudSurface* cloud = nullptr, double seconds_limit = 0.0,
                                             const std::function<void(int rounds)>& on_round = {},
-                                            float max_defect_share = kRepairMaxDefectShare);
+                                            float max_defect_share = kRepairMaxDefectShare, std::uint32_t threads = 1);
 
 }  // namespace nmesh

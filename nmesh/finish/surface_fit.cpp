@@ -15,6 +15,7 @@
 #include "nmesh/geometry/closest_point.h"
 #include "nmesh/spatial/point_grid.h"
 #include "nmesh/util/math_constants.h"
+#include "nmesh/util/parallel.h"
 
 namespace nmesh {
 
@@ -26,6 +27,8 @@ namespace {
 // kMaxIterations; they start from zero, the no-move solution.
 constexpr double kTolerance = 1e-6;
 constexpr int kMaxIterations = 500;
+// The points a thread takes at a time (their nearest triangles and feet).
+constexpr std::size_t kPointsPerChunk = 1024;
 // The search for a point's nearest triangle walks at most this many steps from its start.
 constexpr int kWalkSteps = 6;
 // The moves at a new defect: halved this many times, then undone.
@@ -274,23 +277,47 @@ std::uint64_t solve_round(const Frame& f, const std::vector<Vec3>& points, const
         const PointGrid index(centroids);
         const Reachable reachable(f, options.reach);
         near.resize(points.size());
-        for (std::size_t i = 0; i < points.size(); ++i)
-            near[i] = reachable.maybe(points[i]) ? index.nearest(points[i]) : kInvalidIndex;
+        for_chunks(points.size(), kPointsPerChunk, options.threads, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t i = begin; i < end; ++i)
+                near[i] = reachable.maybe(points[i]) ? index.nearest(points[i]) : kInvalidIndex;
+        });
     }
+    // Each point's nearest triangle (walked to from the last round's), its foot there and whether
+    // it pulls: independent point by point, on the threads.
+    struct Foot {
+        Vec3 q;                 // the foot
+        std::array<float, 3> w;  // its barycentric weights
+        bool pulls = false;
+    };
+    std::vector<Foot> feet(points.size());
+    for_chunks(points.size(), kPointsPerChunk, options.threads, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            if (near[i] == kInvalidIndex) continue;
+            const Vec3& x = points[i];
+            const std::uint32_t t = near[i] = walk_to_nearest(f, near[i], x);
+            const auto& tri = f.triangle[t];
+            const Vec3 &a = f.position[tri[0]], &b = f.position[tri[1]], &c = f.position[tri[2]];
+            Foot& foot = feet[i];
+            foot.q = closest_point_on_triangle_float(x, a, b, c);
+            const float reach = options.reach * f.face_edge[t];
+            if (squared_distance(x, foot.q) > reach * reach) continue;
+            if (!(dot(sides[i], f.face_normal[t]) > 0.0f)) continue;  // faces away, or a degenerate triangle
+            foot.w = barycentric(foot.q, a, b, c);
+            foot.pulls = true;
+        }
+    });
+    // The normal equations, summed in the points' order.
     System system(f, unknown, n_unknowns, options.normal_only ? 1 : 3);
     std::uint64_t used = 0;
     for (std::uint32_t i = 0; i < points.size(); ++i) {
+        const Foot& foot = feet[i];
+        if (!foot.pulls) continue;
         const Vec3& x = points[i];
-        if (near[i] == kInvalidIndex) continue;
-        const std::uint32_t t = near[i] = walk_to_nearest(f, near[i], x);
+        const std::uint32_t t = near[i];
         const auto& tri = f.triangle[t];
-        const Vec3 &a = f.position[tri[0]], &b = f.position[tri[1]], &c = f.position[tri[2]];
-        const Vec3 q = closest_point_on_triangle_float(x, a, b, c);
-        const float reach = options.reach * f.face_edge[t];
-        if (squared_distance(x, q) > reach * reach) continue;
+        const Vec3& q = foot.q;
+        const std::array<float, 3>& w = foot.w;
         const Vec3& m = f.face_normal[t];
-        if (!(dot(sides[i], m) > 0.0f)) continue;  // faces away, or a degenerate triangle
-        const std::array<float, 3> w = barycentric(q, a, b, c);
         const double r = double(dot(x - q, m));
         std::array<double, 3> coef{};
         std::array<std::int32_t, 3> col{};
@@ -367,7 +394,7 @@ SurfaceFitResult fit_surface(Mesh& mesh, const CloudSurface& cloud, const Surfac
     // whose move is taken back.
     std::vector<std::uint8_t> held(mesh.vertex_capacity(), 0);
     if (!options.known_clean) {
-        const DefectTracker before(mesh, cos_limit);
+        const DefectTracker before(mesh, cos_limit, false, options.threads);
         for (const Face f : before.defective_faces())
             for (const Vertex v : corners(mesh, f)) held[v.idx] = 1;
     }
@@ -418,7 +445,7 @@ SurfaceFitResult fit_surface(Mesh& mesh, const CloudSurface& cloud, const Surfac
     for (const Vertex v : frame.verts)
         if (mesh.position(v) != origin[v.idx]) moved.push_back(v);
     if (moved.empty()) return result;
-    DefectTracker tracker(mesh, cos_limit);
+    DefectTracker tracker(mesh, cos_limit, false, options.threads);
     std::vector<std::uint8_t> touched(mesh.vertex_capacity(), 0);  // 1: halved, 2: undone
     // The triangles to look at for thinness: all of them, then those round the vertices last put
     // back or halved.

@@ -77,6 +77,9 @@ struct SurfaceFitOptions {
     // The caller knows the mesh has no crossing pair and no folded edge (the repair's result):
     // the search for the defects before the fit (whose corners stay) is skipped.
     bool known_clean = false;
+    // Threads (0: the machine's cores) for each point's nearest triangle and foot; the normal
+    // equations are summed on the calling thread in the points' order: the same fit for any count.
+    std::uint32_t threads = 1;
 };
 
 struct SurfaceFitResult {

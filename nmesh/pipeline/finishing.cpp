@@ -32,12 +32,13 @@ bool finish_stage(const Mesh& learnt, std::shared_ptr<PointGrid>& cloud_index, P
     options.rounds = int(params.finish_rounds);
     options.fit_rounds = int(params.fit_rounds);
     options.surface_fit_rounds = int(params.surface_fit_rounds);
+    options.threads = params.threads;
     if (!repair) options.repair_max_rounds = 0;
     options.off_cloud_last_resort = last_resort;
     const std::vector<Vec3> points = index.indexed_points();
     std::vector<Vec3> sides;
     if (solid != nullptr && !solid->surface.positions.empty()) {
-        sides = sample_sides(PointSpan(points), PointTransform{}, solid->surface, solid->reach);
+        sides = sample_sides(PointSpan(points), PointTransform{}, solid->surface, solid->reach, params.threads);
         options.point_sides = &sides;
     }
     const FinishReport report =
