@@ -32,9 +32,8 @@ namespace nmesh::pipeline {
 constexpr std::uint32_t kFirstCheckpoint = 16;
 constexpr std::uint32_t kLastCheckpoint = 4096;
 constexpr std::uint32_t kRetries = 8;
-// A target of at most twice kLastCheckpoint vertices whose output still has crossing triangles
-// or inward faces is learnt again from the checkpoint before it, on another stream, up to
-// kOutputRetries times (reconstruct()).
+// A target whose output still has crossing triangles or inward faces is learnt again from the
+// last checkpoint before it, on another stream, up to kOutputRetries times (reconstruct()).
 constexpr std::uint32_t kOutputRetries = 3;
 
 // Topology closed or open: the bridge and handle searches each time the mesh grows by half, from
