@@ -37,6 +37,7 @@
 #include "nmesh/io.h"
 #include "nmesh/metrics.h"
 #include "nmesh/reconstruct.h"
+#include "number_list.h"
 #include "summary.h"
 #include "surface_distance.h"
 
@@ -114,22 +115,6 @@ bool fails_check(const Run& r) {
 
 std::string name_of(const std::string& path) { return std::filesystem::path(path).stem().string(); }
 
-std::vector<std::uint64_t> parse_range(const std::string& text) {
-    std::vector<std::uint64_t> out;
-    std::stringstream in(text);
-    std::string part;
-    while (std::getline(in, part, ',')) {
-        const auto dash = part.find('-');
-        if (dash == std::string::npos) {
-            out.push_back(std::stoull(part));
-        } else {
-            for (std::uint64_t s = std::stoull(part.substr(0, dash)); s <= std::stoull(part.substr(dash + 1)); ++s)
-                out.push_back(s);
-        }
-    }
-    return out;
-}
-
 std::string fmt(const char* f, double x) {
     char b[64];
     std::snprintf(b, sizeof b, f, x);
@@ -152,9 +137,9 @@ int main(int argc, char** argv) {
                                          {"--csv", "--md", "--seeds", "--fractions", "--sizes", "--topology",
                                           "--samples", "--genus", "--surface-fit-rounds"});
         clouds = args.positional();
-        seeds = parse_range(args.text("--seeds", "1-10"));
-        fractions = parse_range(args.text("--fractions", "2,6"));
-        if (args.has("--sizes")) sizes = parse_range(args.text("--sizes"));
+        seeds = nmesh::bench::parse_range(args.text("--seeds", "1-10"));
+        fractions = nmesh::bench::parse_range(args.text("--fractions", "2,6"));
+        if (args.has("--sizes")) sizes = nmesh::bench::parse_range(args.text("--sizes"));
         if (args.has("--topology")) topology = nmesh::parse_topology(args.text("--topology").c_str());
         samples = std::stoull(args.text("--samples", "50000"));
         surface_fit_rounds = std::uint32_t(args.count("--surface-fit-rounds", surface_fit_rounds));

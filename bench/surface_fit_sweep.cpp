@@ -32,6 +32,7 @@
 #include "nmesh/mesh/mesh.h"
 #include "nmesh/metrics.h"
 #include "nmesh/reconstruct.h"
+#include "number_list.h"
 #include "surface_distance.h"
 
 namespace {
@@ -40,21 +41,6 @@ std::vector<double> parse_numbers(const std::string& text) {
     std::vector<double> out;
     std::stringstream in(text);
     for (std::string part; std::getline(in, part, ',');) out.push_back(std::stod(part));
-    return out;
-}
-
-std::vector<std::uint64_t> parse_range(const std::string& text) {
-    std::vector<std::uint64_t> out;
-    std::stringstream in(text);
-    for (std::string part; std::getline(in, part, ',');) {
-        const auto dash = part.find('-');
-        if (dash == std::string::npos) {
-            out.push_back(std::stoull(part));
-        } else {
-            for (std::uint64_t s = std::stoull(part.substr(0, dash)); s <= std::stoull(part.substr(dash + 1)); ++s)
-                out.push_back(s);
-        }
-    }
     return out;
 }
 
@@ -73,10 +59,10 @@ int main(int argc, char** argv) {
                                          {"--csv", "--seeds", "--fractions", "--sizes", "--rounds", "--smoothness",
                                           "--reach", "--step", "--samples"});
         clouds = args.positional();
-        seeds = parse_range(args.text("--seeds", "1-3"));
-        fractions = parse_range(args.text("--fractions", "3,10"));
-        if (args.has("--sizes")) sizes = parse_range(args.text("--sizes"));
-        rounds = parse_range(args.text("--rounds", "1,2,3"));
+        seeds = nmesh::bench::parse_range(args.text("--seeds", "1-3"));
+        fractions = nmesh::bench::parse_range(args.text("--fractions", "3,10"));
+        if (args.has("--sizes")) sizes = nmesh::bench::parse_range(args.text("--sizes"));
+        rounds = nmesh::bench::parse_range(args.text("--rounds", "1,2,3"));
         smoothness = parse_numbers(args.text("--smoothness", "0.03,0.1,0.3"));
         reach = parse_numbers(args.text("--reach", "1"));
         step = parse_numbers(args.text("--step", "0.5"));

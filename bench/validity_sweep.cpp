@@ -28,6 +28,7 @@
 #include "nmesh/metrics.h"
 #include "nmesh/mesh/orientation.h"
 #include "nmesh/reconstruct.h"
+#include "number_list.h"
 #include "summary.h"
 
 namespace {
@@ -48,22 +49,6 @@ struct Run {
     int genus = -1;
     std::size_t boundary_loops = 0, components = 0;
 };
-
-std::vector<std::uint64_t> parse_range(const std::string& text) {
-    std::vector<std::uint64_t> out;
-    std::stringstream in(text);
-    std::string part;
-    while (std::getline(in, part, ',')) {
-        const auto dash = part.find('-');
-        if (dash == std::string::npos) {
-            out.push_back(std::stoull(part));
-        } else {
-            for (std::uint64_t s = std::stoull(part.substr(0, dash)); s <= std::stoull(part.substr(dash + 1)); ++s)
-                out.push_back(s);
-        }
-    }
-    return out;
-}
 
 std::string name_of(const std::string& path) { return std::filesystem::path(path).stem().string(); }
 
@@ -121,8 +106,8 @@ int main(int argc, char** argv) {
         const nmesh::cli::Arguments args(argc, argv, 1, {"--check"},
                                          {"--csv", "--md", "--seeds", "--sizes", "--finish", "--exempt", "--topology"});
         clouds = args.positional();
-        seeds = parse_range(args.text("--seeds", "1-20"));
-        sizes = parse_range(args.text("--sizes", "1000,3000,5000,10000,30000"));
+        seeds = nmesh::bench::parse_range(args.text("--seeds", "1-20"));
+        sizes = nmesh::bench::parse_range(args.text("--sizes", "1000,3000,5000,10000,30000"));
         finish_mode = args.text("--finish", "both");
         if (args.has("--topology")) g_topology = nmesh::parse_topology(args.text("--topology").c_str());
         csv = args.text("--csv");
