@@ -88,9 +88,9 @@ struct Parameters {
     // the whole cloud. 0 indexes every point.
     std::uint32_t index_points_per_vertex = 64;
     // Threads for the independent work of the stages around the learning (the solid's reading,
-    // the samples' sides, the output check): 0, the machine's cores
-    // (std::thread::hardware_concurrency()), or 1 to 1024. The learning and the finishing stage run
-    // on one. Every count gives the same mesh and statistics, bit for bit.
+    // the samples' sides, the finishing stage's relaxation, surface fit and defect search, the
+    // output check): 0, the machine's cores (std::thread::hardware_concurrency()), or 1 to 1024.
+    // The learning runs on one. Every count gives the same mesh and statistics, bit for bit.
     std::uint32_t threads = 0;
 
     // Throws ParameterError naming the first parameter out of range.

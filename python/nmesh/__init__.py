@@ -241,8 +241,9 @@ def reconstruct(
         best matches the points, least squares), in rounds; 0 turns it off.
     settle: settle * n iterations without topology changes once the target size is reached.
     index_points_per_vertex: cloud points indexed per target vertex (0: all of them).
-    threads: threads for the work beside the learning (the solid's reading, the output check,
-        the metrics); 0, the machine's cores, or 1 to 1024. The same mesh for every count.
+    threads: threads for the work beside the learning (the solid's reading, the finishing stage's
+        relaxation and fit, the output check, the metrics); 0, the machine's cores, or 1 to 1024.
+        The same mesh for every count.
     metrics: measure the mesh against the whole cloud for stats["metrics"], as the command-line
         tool does for --stats: about 0.25 s on the 36k-point bunny whatever the mesh size, which
         is most of the time of a small reconstruction (0.07 s at 500 vertices). False leaves
