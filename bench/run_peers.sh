@@ -51,24 +51,8 @@ done
 if [ ! -d "$data/corpus" ]; then echo "bench/run_peers.sh: needs $data and $data/corpus" >&2; exit 1; fi
 
 echo "== Debian packages"
-packages="libcgal-dev python3-open3d python3-numpy time"
-missing=""
-for p in $packages; do
-  if ! dpkg-query -W -f='${Status}' "$p" 2> /dev/null | grep -q "install ok installed"; then missing="$missing $p"; fi
-done
-if [ -n "$missing" ]; then
-  if [ "$(id -u)" != 0 ]; then
-    echo "bench/run_peers.sh: missing$missing; as root: apt-get install$missing" >&2
-    exit 1
-  fi
-  export DEBIAN_FRONTEND=noninteractive
-  echo "installing$missing"
-  # The package lists may be absent or stale on a fresh machine: update only then.
-  if ! apt-get install -y -qq $missing > /dev/null; then
-    apt-get update -qq
-    apt-get install -y -qq $missing > /dev/null
-  fi
-fi
+. .ci/debian_packages.sh
+require_debian_packages bench/run_peers.sh libcgal-dev python3-open3d python3-numpy time
 # Debian's interpreter, for which python3-open3d is built; Open3D on one thread (its OpenMP
 # threads only slow a shared machine down, and no Open3D step is timed).
 python=/usr/bin/python3

@@ -24,24 +24,8 @@ if [ ! -x "$cli" ]; then
 fi
 
 echo "== Python module: Debian packages"
-packages="pybind11-dev python3-numpy python3-pytest python3-dev"
-missing=""
-for p in $packages; do
-  if ! dpkg-query -W -f='${Status}' "$p" 2> /dev/null | grep -q "install ok installed"; then missing="$missing $p"; fi
-done
-if [ -n "$missing" ]; then
-  if [ "$(id -u)" != 0 ]; then
-    echo "python/ci.sh: missing$missing; as root: apt-get install$missing" >&2
-    exit 1
-  fi
-  export DEBIAN_FRONTEND=noninteractive
-  echo "installing$missing"
-  # The package lists may be absent or stale on a fresh machine: update only then.
-  if ! apt-get install -y -qq $missing > /dev/null; then
-    apt-get update -qq
-    apt-get install -y -qq $missing > /dev/null
-  fi
-fi
+. .ci/debian_packages.sh
+require_debian_packages python/ci.sh pybind11-dev python3-numpy python3-pytest python3-dev
 
 echo "== Python module: configure, build, install into $build/install"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DNMESH_BUILD_PYTHON=ON -DNMESH_WERROR=ON \
