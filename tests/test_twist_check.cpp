@@ -172,27 +172,30 @@ TEST_CASE("a compact checkpoint assigned back learns the same bits; a reseeded o
 }
 
 TEST_CASE("a small target whose output is not valid is learnt again from the checkpoint before it") {
-    // The ball on thin legs at 1,000 vertices: seeds 4 and 7 finish with crossing triangles in a
-    // leg on their first path, seed 1 on every path (found with --stats output_retries).
-    const PointCloud table = table_cloud();
+    // The thin-walled ring at 3,000 vertices: seeds 2, 4 and 5 finish with crossing triangles
+    // where a sheet turns round the wall's end on their first path (found with --stats
+    // output_retries; the ball on thin legs at 1,000 vertices, which did before the solid's
+    // splats, now finishes valid on every seed of 1-40).
+    const PointCloud ring = test::thin_ring_cloud(20000, 0.02f);
     int retried_valid = 0;
-    for (std::uint64_t seed : seeds_to_learn({4, 7, 1})) {
+    for (std::uint64_t seed : seeds_to_learn({4, 2, 5})) {
         Parameters p = thousand_vertices(seed);
-        const Result r = reconstruct(table.points, p);
+        p.target_vertices = 3000;
+        const Result r = reconstruct(ring.points, p);
         INFO("seed " << seed);
-        CHECK(r.mesh.positions.size() == 1000);
+        CHECK(r.mesh.positions.size() == 3000);
         const bool valid = r.stats.crossing_pairs == 0 && r.stats.inward_faces == 0;
         // An invalid output only after every retry, or once the checkpoints have stopped.
         if (!valid) CHECK((r.stats.output_retries == 3 || r.stats.twists_kept > 0));
         if (valid && r.stats.output_retries > 0) ++retried_valid;
         if (seed == 4 && !kSanitized) {
-            const Result again = reconstruct(table.points, p);
+            const Result again = reconstruct(ring.points, p);
             CHECK(again.mesh.positions == r.mesh.positions);
             CHECK(again.stats.output_retries == r.stats.output_retries);
         }
         // Without the finishing stage the learnt mesh is returned as it is, never retried.
         p.finish = false;
-        CHECK(reconstruct(table.points, p).stats.output_retries == 0);
+        CHECK(reconstruct(ring.points, p).stats.output_retries == 0);
     }
     CHECK(retried_valid >= (kSanitized ? 1 : 2));
 }

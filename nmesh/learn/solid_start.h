@@ -16,7 +16,9 @@
 // Choices:
 //   - lengths are in units of d, the median distance from a point to its nearest other point
 //     (measured on up to 4,096 points): the cells are kVoxel d across, and the offsets tried
-//     are kOffsets d, smallest first;
+//     are kOffsets d, smallest first; the shell at an offset r is the cells within r of a point
+//     along the surface and within r / s across it (the point's splat, cloud_splats.h: two
+//     parts of the object closer than 2r stay apart while farther than 2r / s);
 //   - an offset leaks when the solid is no more than its shell (its inside, the cells of the
 //     solid outside the shell, fewer than kMinInside of the shell's): the outside came in through
 //     a hole of the scan (the bunny's base) or between samples;
@@ -49,8 +51,9 @@ namespace nmesh {
 // Random samples leave spots up to about 4 d from every point (a smaller offset leaks); the
 // knot's strands cross 13.6 d apart (a larger offset than 4 d closes its crossings); the rocker
 // arm, sampled unevenly, walls round at 6 d and the bunny over its base holes at 8 d. The steps
-// are those at which the distance transform's squared cell distances (sums of three squares)
-// change at cells kVoxel d across: 1.5, 1.75, 2, 2.25, 2.5, 3, 3.5, 4, 5 and 6 cells.
+// are those at which squared cell distances (sums of three squares) change at cells kVoxel d
+// across: 1.5, 1.75, 2, 2.25, 2.5, 3, 3.5, 4, 5 and 6 cells. An offset is measured along the
+// surface; across it the shell reaches offset / s (cloud_splats.h).
 inline constexpr float kOffsets[] = {3.0f, 3.5f, 4.0f, 4.5f, 5.0f, 6.0f, 7.0f, 8.0f, 10.0f, 12.0f};
 // The grids that vote on a genus: shifted by these fractions of a cell.
 inline constexpr Vec3 kGridShifts[] = {{0.0f, 0.0f, 0.0f}, {0.5f, 0.5f, 0.5f}, {0.25f, 0.5f, 0.75f}};
@@ -83,13 +86,17 @@ struct SolidSurface {
     // The genus can be trusted: the shifted grids agree on it at `offset` and the next offset.
     bool stable = false;
     // The outer surface (faces outward), when stable and, for genus 0, walled round at an offset
-    // of at most kMaxShapeOffset (solid_start's condition for a start).
+    // of at most kMaxShapeOffset (solid_start's condition for a start): on cells 2 kVoxel d
+    // across when those read the same topology (the start's), and on cells kVoxel d across at
+    // `offset` (empty when none of the shifted grids reads the genus there). Across the surface
+    // the shell reaches offset / s, under the larger cells' size: the fine surface is the one
+    // within about a cell of every point, the points' sides are read from it (sample_sides.h).
     IndexedMesh surface;
+    IndexedMesh fine_surface;
 };
 
 // The solid `points` (through `transform`) wall round, and its outer surface. O(P + voxels).
-// `threads` (0: the machine's cores) share each distance transform's lines: the same result for
-// every count.
+// `threads` (0: the machine's cores) share each grid's layers: the same result for every count.
 SolidSurface solid_surface(PointSpan points, const PointTransform& transform, std::uint32_t threads = 1);
 
 // The learning's start for topology closed and open: the solid's outer surface simplified to
@@ -99,7 +106,9 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform, st
 struct SolidStart {
     int solid_genus = -1;       // of the solid, when the points wall one round (one component)
     std::optional<Mesh> mesh;   // the start, dense slots, faces outward
-    IndexedMesh surface;        // the solid's outer surface, before its simplification to the start
+    // The solid's outer surface on the fine cells (SolidSurface::fine_surface, else the start's
+    // before its simplification).
+    IndexedMesh surface;
     // How far from its nearest vertex of `surface` a point's side is trusted (sample_sides.h):
     // the offset and kSideMargin d.
     float reach = 0.0f;
@@ -119,12 +128,8 @@ inline std::uint32_t start_vertices(std::uint32_t target) { return std::min(targ
 bool simplify(Mesh& mesh, std::uint32_t n);
 
 namespace solid_detail {
-// The squared distance transform of one line (Felzenszwalb and Huttenlocher's lower envelope of
-// parabolas): d[q] = min over p of f[p] + (q - p)^2 for q in [0, n), n >= 1. `v` and `z` are
-// scratch of n and n + 1 elements. O(n).
-void distance_line(const double* f, int n, double* d, int* v, double* z);
 // For each cell of a grid of `dims` cells (x fastest) with distances `dist` (squared, in cells,
-// clamped at 255) to the nearest cell holding a point: the largest v such that a 6-connected path
+// clamped at 255) to the nearest point's splat: the largest v such that a 6-connected path
 // of cells whose distances are all at least v joins the cell to the grid's border, the border
 // layer excluded from the paths' insides (its cells keep their own distance). At an offset of r
 // cells, the cells of level above r^2 are the outside: one flood (a bucket queue in order of
