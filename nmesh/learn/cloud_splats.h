@@ -43,13 +43,16 @@ struct Splat {
     float stretch = 1.0f;  // s >= 1
 };
 
-// One splat per point; `spacing` is d. O(n k) for the neighbours.
-std::vector<Splat> cloud_splats(const std::vector<Vec3>& points, float spacing);
+// One splat per point; `spacing` is d. O(n k) for the neighbours. The points are shared by
+// `threads` threads (0: the machine's cores): the same splats for every count.
+std::vector<Splat> cloud_splats(const std::vector<Vec3>& points, float spacing, std::uint32_t threads = 1);
 
 // Per cell of the grid (cells `h` across, cell (x, y, z) centred at origin + (x, y, z) h, x
-// fastest), the smallest splat distance to a splat centre, in squared cells, rounded, where it
-// is at most `reach` cells; 255 elsewhere (and for any value above 254). `threads` share the
-// grid's layers: the same result for every count.
+// fastest), the smallest splat distance to a splat centre, in squared cells, rounded (254 for
+// any value above): every cell whose value is at most reach^2 (`reach` in cells) has it, any
+// other holds its value or 255. So a reading at an offset within the reach (the cells at most
+// offset^2) is the same for any larger reach. `threads` share the grid's layers: the same
+// result for every count.
 std::vector<std::uint8_t> splat_distances(const std::vector<Splat>& splats, const Vec3& origin, float h,
                                           const std::array<std::uint32_t, 3>& dims, float reach,
                                           std::uint32_t threads);

@@ -325,7 +325,7 @@ GridReading read_grid(PointSpan points, const PointTransform& transform, float o
     Grid g = base_grid(t.box, t.d);
     g.origin = g.origin + kGridShifts[shift] * g.h;
     const float largest = kOffsets[std::size(kOffsets) - 1] * t.d;
-    const std::vector<std::uint8_t> dist = distances(g, cloud_splats(t.p, t.d), largest, 1);
+    const std::vector<std::uint8_t> dist = distances(g, cloud_splats(t.p, t.d, 1), largest, 1);
     std::vector<std::uint8_t> state;
     const auto [shell, inside] = classify(dist, outside_levels(g.dims, dist), offset * t.d / g.h, state);
     r.walled = double(inside) >= kMinInside * double(shell);
@@ -346,8 +346,14 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform, st
     out.spacing = d;
     const float largest = kOffsets[std::size(kOffsets) - 1] * d;
     const Grid g = base_grid(box, d);
-    const std::vector<Splat> splats = cloud_splats(p, d);
-    auto grid_distances = [&](const Grid& q) { return distances(q, splats, largest, threads); };
+    const std::vector<Splat> splats = cloud_splats(p, d, threads);
+    // The distances up to `reach` (in the points' units): at an offset r no more than the reach,
+    // a cell farther than the reach (255) is beyond the shell and on the outside's side of it as
+    // it would be with its distance, and the reading is the same. The splats' boxes grow as the
+    // reach's cube: a grid is computed to kFirstReach, and again farther only when the reading
+    // goes beyond it (the offsets of the five shared clouds and most of the corpus's are at most
+    // 6 d: docs/algorithm.md).
+    auto grid_distances = [&](const Grid& q, float reach) { return distances(q, splats, reach, threads); };
     // The grids, each shifted by a fraction of a cell: a tunnel between two cells' corners (the
     // grid's own) comes and goes as the grid moves, a handle of the object does not.
     constexpr int kGrids = int(std::size(kGridShifts));
@@ -356,20 +362,27 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform, st
     // Per grid, the cells counted by (distance, outside level): whether an offset walls round is
     // read from them without a pass over the cells. A grid is prepared when first asked for.
     std::array<std::vector<std::uint32_t>, kGrids> counts;
-    const auto prepare = [&](int k) {
-        if (!counts[k].empty()) return;
+    std::array<float, kGrids> reached{};  // the reach each grid's distances were computed to, in d
+    const auto prepare = [&](int k, float offset) {
+        if (!counts[k].empty() && offset <= reached[k]) return;
+        // Beyond the first reach, in steps of a third (6, 8, 10.7, 12 d): each step costs about
+        // what the ones before it did together.
+        float reach = kFirstReach;
+        constexpr float kLast = kOffsets[std::size(kOffsets) - 1];
+        while (reach < offset && reach < kLast) reach = std::min(kLast, reach * (4.0f / 3.0f));
+        reached[k] = std::max(reach, offset);
         grids[k] = g;
         grids[k].origin = g.origin + kGridShifts[k] * g.h;
-        dist[k] = grid_distances(grids[k]);
+        dist[k] = grid_distances(grids[k], reached[k] * d);
         level[k] = outside_levels(grids[k].dims, dist[k]);
         counts[k].assign(256 * 256, 0);
         for (std::size_t i = 0; i < dist[k].size(); ++i) ++counts[k][std::size_t(dist[k][i]) * 256 + level[k][i]];
     };
     // The shell (distance at most r^2) and the inside (beyond the shell, outside level at most r^2)
     // of grid k at an offset of r cells.
-    const auto walled_round = [&](int k, float r) {
-        prepare(k);
-        const float r2 = r * r;
+    const auto walled_round = [&](int k, float offset) {
+        prepare(k, offset);
+        const float r = offset * d / g.h, r2 = r * r;
         std::uint64_t shell = 0, inside = 0;
         for (int dv = 0; dv < 256; ++dv)
             for (int lv = 0; lv < 256; ++lv) {
@@ -389,7 +402,7 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform, st
     // are the grid's own or the sampling's). The clouds of genus 0 read it so, at the same offset
     // as with the votes (docs/algorithm.md), for a third of the work.
     for (const float offset : kOffsets) {
-        if (!walled_round(0, offset * d / g.h)) continue;
+        if (!walled_round(0, offset)) continue;
         classify(dist[0], level[0], offset * d / g.h, state);
         if (surface_topology(grids[0], state) == std::make_pair(std::uint32_t(1), 0)) {
             out.walled = out.stable = true;
@@ -412,7 +425,7 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform, st
         for (int k = 0; k < kGrids; ++k) {
             // Two grids that agree are a majority already.
             if (k == 2 && genera[0] >= 0 && genera[0] == genera[1]) break;
-            if (!walled_round(k, offset * d / g.h)) continue;
+            if (!walled_round(k, offset)) continue;
             classify(dist[k], level[k], offset * d / g.h, state);
             ++walled;
             const auto [components, genus] = surface_topology(grids[k], state);
@@ -451,7 +464,7 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform, st
     const float* next = std::find(std::begin(kOffsets), std::end(kOffsets), out.offset) + 1;
     {
         const Grid coarse = grid_over(box, 2.0f * g.h, largest + 4.0f * g.h);
-        const std::vector<std::uint8_t> coarse_dist = grid_distances(coarse);
+        const std::vector<std::uint8_t> coarse_dist = grid_distances(coarse, (next != std::end(kOffsets) ? *next : out.offset) * d);
         const std::vector<std::uint8_t> coarse_level = outside_levels(coarse.dims, coarse_dist);
         for (const float offset : {out.offset, next != std::end(kOffsets) ? *next : out.offset}) {
             classify(coarse_dist, coarse_level, offset * d / coarse.h, state);
@@ -461,7 +474,7 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform, st
         }
     }
     for (int k = 0; k < kGrids && out.fine_surface.triangles.empty(); ++k) {
-        prepare(k);
+        prepare(k, out.offset);
         classify(dist[k], level[k], out.offset * d / g.h, state);
         if (surface_topology(grids[k], state) == std::make_pair(std::uint32_t(1), out.genus))
             out.fine_surface = outer_surface(grids[k], state);

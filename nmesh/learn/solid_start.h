@@ -55,6 +55,10 @@ namespace nmesh {
 // across: 1.5, 1.75, 2, 2.25, 2.5, 3, 3.5, 4, 5 and 6 cells. An offset is measured along the
 // surface; across it the shell reaches offset / s (cloud_splats.h).
 inline constexpr float kOffsets[] = {3.0f, 3.5f, 4.0f, 4.5f, 5.0f, 6.0f, 7.0f, 8.0f, 10.0f, 12.0f};
+// A grid's distances are computed up to this many d first, and farther only when the reading
+// needs an offset beyond (solid_surface: the same reading, the splats' boxes an eighth of the
+// largest offset's).
+inline constexpr float kFirstReach = 6.0f;
 // The grids that vote on a genus: shifted by these fractions of a cell.
 inline constexpr Vec3 kGridShifts[] = {{0.0f, 0.0f, 0.0f}, {0.5f, 0.5f, 0.5f}, {0.25f, 0.5f, 0.75f}};
 // Cells 2 d across: a quarter of the cells of d, and the knot's crossings still 3 cells open at 4 d.
