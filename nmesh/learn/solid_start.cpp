@@ -126,8 +126,8 @@ struct Grid {
 };
 
 // The squared distance, in cells, from each cell's centre to the nearest point's splat
-// (cloud_splats.h), up to `reach` (in the points' units), 255 beyond it. The grid's layers are
-// independent: `threads` share them.
+// (cloud_splats.h): exact in every cell whose value is within `reach` (in the points' units),
+// that or 255 in the others. The grid's layers are independent: `threads` share them.
 std::vector<std::uint8_t> distances(const Grid& g, const std::vector<Splat>& splats, float reach, std::uint32_t threads) {
     return splat_distances(splats, g.origin, g.h, g.dims, reach / g.h, threads);
 }
