@@ -33,6 +33,9 @@ struct Statistics {
     // the solid the cloud walls round, when it walls one (-1 when it does not), and the start
     // mesh's vertices (4: the tetrahedron; more: the solid's surface, when its genus is above 0).
     int solid_genus = -1;
+    // The start was the solid's genus-0 core (its genus not read: solid_core.h); the handle
+    // search stayed on.
+    bool start_core = false;
     // Starts whose learning stopped growing before the target and was begun again from the next
     // start (reconstruct(): the solid's surface, the tetrahedron, the paper's learning).
     std::uint64_t start_retries = 0;

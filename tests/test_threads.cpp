@@ -63,6 +63,7 @@ void check_same_counts(const Statistics& a, const Statistics& b) {
     CHECK(a.start_retries == b.start_retries);
     CHECK(a.start_vertices == b.start_vertices);
     CHECK(a.solid_genus == b.solid_genus);
+    CHECK(a.start_core == b.start_core);
     CHECK(a.handles == b.handles);
     CHECK(a.bridges == b.bridges);
     CHECK(a.open_faces_removed == b.open_faces_removed);

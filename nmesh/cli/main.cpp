@@ -148,7 +148,11 @@ void print_summary(const Result& r, const std::string& output) {
                  (unsigned long long)s.splits, (unsigned long long)s.collapses, (unsigned long long)s.collapses_refused,
                  (unsigned long long)s.swaps_kept, (unsigned long long)s.swaps_tried, s.seconds,
                  s.seconds > 0 ? s.iterations / s.seconds / 1e6 : 0.0, finishing.c_str());
-    if (s.start_vertices > 4)
+    if (s.start_core)
+        std::fprintf(stderr, "nmesh: genus %d, %llu boundary loops (learnt from the genus-0 core of the cloud's solid, "
+                     "whose genus did not hold; %llu handles learnt)\n",
+                     s.genus, (unsigned long long)s.boundary_loops, (unsigned long long)s.handles);
+    else if (s.start_vertices > 4)
         std::fprintf(stderr, "nmesh: genus %d, %llu boundary loops (learnt from the surface of the cloud's solid, genus %d)\n",
                      s.genus, (unsigned long long)s.boundary_loops, s.solid_genus);
     else

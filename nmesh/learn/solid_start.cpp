@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <iterator>
@@ -11,6 +12,7 @@
 
 #include "nmesh/bounding_box.h"
 #include "nmesh/learn/cloud_splats.h"
+#include "nmesh/learn/solid_core.h"
 #include "nmesh/util/parallel.h"
 
 namespace nmesh {
@@ -152,12 +154,6 @@ std::pair<std::uint64_t, std::uint64_t> classify(const std::vector<std::uint8_t>
     }
     return {shell, inside};
 }
-
-// The Kuhn triangulation of the grid: six tetrahedra round each cube's diagonal from corner 0 to
-// corner 7 (corner c at (c & 1, c >> 1 & 1, c >> 2 & 1)); they match across the cubes' faces. Its
-// edges are the lattice edges along the seven directions below.
-constexpr int kTets[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
-constexpr int kKuhnEdges[7][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
 
 // The components and the genus of the solid's outer surface (the marching tetrahedra surface of
 // outer_surface()), counted on the grid without building it: its vertices are the Kuhn edges
@@ -453,7 +449,34 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform, st
         previous = agreed;
         previous_offset = offset;
     }
-    if (!out.stable) return out;
+    if (!out.stable) {
+        // No genus persists: where the solid walls round as close as a genus-0 start's
+        // (kMaxShapeOffset) in one component, its genus-0 core is the start (solid_core.h), on
+        // the larger cells when they hold one component too; the fine cells' core gives the
+        // points' sides, as the fine surface does.
+        if (!out.walled || out.offset > kMaxShapeOffset) return out;
+        const Grid coarse = grid_over(box, 2.0f * g.h, largest + 4.0f * g.h);
+        const std::vector<std::uint8_t> coarse_dist = grid_distances(coarse, out.offset * d);
+        prepare(0, out.offset);
+        for (const Grid* q : {&coarse, static_cast<const Grid*>(&grids[0])}) {
+            const bool fine = q != &coarse;
+            const std::vector<std::uint8_t>& qd = fine ? dist[0] : coarse_dist;
+            classify(qd, fine ? level[0] : outside_levels(q->dims, qd), out.offset * d / q->h, state);
+            if (surface_topology(*q, state).first != 1) continue;
+            // The inside joins first, then the shell from the points outwards: the cuts fall
+            // where the shell is farthest from the points, in a gap it closes between two parts.
+            std::vector<std::uint16_t> rank(state.size());
+            for (std::size_t i = 0; i < state.size(); ++i)
+                rank[i] = state[i] == kOutside ? 0 : state[i] == kFree ? 257 : std::uint16_t(256 - qd[i]);
+            const std::vector<std::uint8_t> core = genus_zero_core(q->dims, rank);
+            for (std::size_t i = 0; i < state.size(); ++i) state[i] = core[i] ? kFree : kOutside;
+            assert(surface_topology(*q, state) == std::make_pair(std::uint32_t(1), 0));  // a ball's surface
+            (fine ? out.fine_surface : out.surface) = outer_surface(*q, state);
+            out.core = true;
+        }
+        if (out.surface.triangles.empty()) out.surface = out.fine_surface;
+        return out;
+    }
     if (out.genus == 0 && out.offset > kMaxShapeOffset) return out;  // no start: no surface to build
     // The start's surface: from cells twice as large (the unshifted grid's) when those give the
     // same topology at that offset or the next (a quarter of the triangles to simplify, and a
@@ -487,10 +510,12 @@ SolidStart solid_start(PointSpan points, const PointTransform& transform, std::u
                        std::uint32_t threads) {
     SolidStart out;
     const SolidSurface solid = solid_surface(points, transform, threads);
-    if (!solid.walled || solid.components != 1 || !solid.stable) return out;
-    out.solid_genus = solid.genus;
+    const bool read = solid.walled && solid.components == 1 && solid.stable;
+    if (!read && !solid.core) return out;
+    if (read) out.solid_genus = solid.genus;
     if (solid.surface.triangles.empty()) return out;  // a genus-0 solid walled round too far out
     Mesh mesh = Mesh::from_indexed(solid.surface);
+    out.core = solid.core;
     out.surface = solid.fine_surface.triangles.empty() ? solid.surface : solid.fine_surface;
     out.reach = (solid.offset + kSideMargin) * solid.spacing;
     mesh.drop_faces();

@@ -28,7 +28,9 @@
 //     gaps between random samples close over a narrow range of offsets, and while they close the
 //     genus jumps; a tunnel between two cells' corners (the grid's own) comes and goes as the
 //     grid moves; a handle of the object holds while the offset is smaller than the hole. When
-//     no genus persists, the solid is not read and the learning starts from the tetrahedron;
+//     no genus persists, the solid is not read: where it walls round within kMaxShapeOffset in
+//     one component, its genus-0 core (solid_core.h) is the start, the handles left to the
+//     learning's search; otherwise the learning starts from the tetrahedron;
 //   - the start is the outer surface simplified to start_vertices(target) vertices (simplify);
 //   - the grid has at most kMaxVoxels cells (larger voxels for a cloud that would need more):
 //     one byte each for the distances, the states and the components' flood, 50 MB at most
@@ -97,6 +99,10 @@ struct SolidSurface {
     // within about a cell of every point, the points' sides are read from it (sample_sides.h).
     IndexedMesh surface;
     IndexedMesh fine_surface;
+    // Not stable, and `surface` and `fine_surface` are the outer surfaces of the genus-0 core
+    // (solid_core.h) of the solid at `offset`: a start with the object's shape, whose handles are
+    // not known.
+    bool core = false;
 };
 
 // The solid `points` (through `transform`) wall round, and its outer surface. O(P + voxels).
@@ -105,11 +111,14 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform, st
 
 // The learning's start for topology closed and open: the solid's outer surface simplified to
 // start_vertices(target) vertices, when `points` wall a solid round (one component, a genus that
-// can be trusted; for genus 0, an offset of at most kMaxShapeOffset); no mesh otherwise (the
-// learning starts from the tetrahedron, as the paper's).
+// can be trusted; for genus 0, an offset of at most kMaxShapeOffset), or its genus-0 core when
+// no genus can be trusted (SolidSurface::core); no mesh otherwise (the learning starts from the
+// tetrahedron, as the paper's).
 struct SolidStart {
     int solid_genus = -1;       // of the solid, when the points wall one round (one component)
     std::optional<Mesh> mesh;   // the start, dense slots, faces outward
+    // The start is the solid's genus-0 core: the genus is not known, the handle search stays on.
+    bool core = false;
     // The solid's outer surface on the fine cells (SolidSurface::fine_surface, else the start's
     // before its simplification).
     IndexedMesh surface;

@@ -52,7 +52,7 @@ Result learn_from(PointSpan cloud, const Parameters& params, const Parameters& l
     // sides keep them apart (sample_sides.h).
     std::vector<Vec3> sides;
     if (solid.mesh) {
-        engine->keep_genus();
+        if (!solid.core) engine->keep_genus();
         sides = sample_sides(cloud, norm.transform, solid.surface, solid.reach, params.threads);
         engine->set_sample_sides(sides.data());
     }
@@ -80,6 +80,7 @@ Result learn_from(PointSpan cloud, const Parameters& params, const Parameters& l
         result.cancelled = reporter.cancelled();
         result.stats = engine->stats();
         result.stats.solid_genus = solid.solid_genus;
+        result.stats.start_core = solid.core && solid.mesh.has_value();
         result.stats.start_vertices = start_vertices;
         // The last progress report: the learning is over.
         if (!result.cancelled) reporter.report(params.settle > 0.0);

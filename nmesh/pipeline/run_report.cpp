@@ -86,6 +86,7 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << "  \"solid_genus\": " << s.solid_genus << ",\n"
       << "  \"start_retries\": " << s.start_retries << ",\n"
       << "  \"start_vertices\": " << s.start_vertices << ",\n"
+      << "  \"start_core\": " << (s.start_core ? "true" : "false") << ",\n"
       << "  \"topology_checks\": " << s.topology_checks << ",\n"
       << "  \"membrane_patches\": " << s.membrane_patches << ",\n"
       << "  \"handles\": " << s.handles << ",\n"
