@@ -202,7 +202,7 @@ void NeuralMesh::update(Vertex w, const Vec3& x, const std::uint32_t* ring, std:
     move_winner(w, x, ring, k);                 // step 3
     smooth_neighbourhood(ring, k, prefetched);  // step 4
     if (adaptive_) {
-        // Beyond the paper (Parameters::adaptivity, from a start that has the shape: keep_genus):
+        // Beyond the paper (Parameters::adaptivity, from a start that has the shape: start_has_shape):
         // the signal weighs the winner's distance to the sample (after step 3) against its
         // running mean, so that the vertices nearest to samples the mesh does not reach yet (a
         // tip, a tail, a sharp bend) split sooner; from kAdaptiveFrom vertices on.

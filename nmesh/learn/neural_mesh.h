@@ -74,14 +74,13 @@ public:
     // the activity index too, and the rings that changed are refreshed. Returns the handles made.
     // O(n log n), plus O(P) when a bridge is found.
     std::uint32_t learn_topology();
+    // Parameters::adaptivity applies from here on: the start (the solid's surface or its genus-0
+    // core, solid_start.h) has the shape's parts, which a growth from the tetrahedron finds by the
+    // density of the samples alone.
+    void start_has_shape() { adaptive_ = params_.adaptivity > 0.0; }
     // The handle search off from here on (the bridges stay): for a start whose genus the cloud's
     // solid already gave (solid_start.h), where a search would only add handles.
-    // Parameters::adaptivity applies from here on too: the start has the shape's parts, which a
-    // growth from the tetrahedron finds by the density of the samples alone.
-    void keep_genus() {
-        search_handles_ = false;
-        adaptive_ = params_.adaptivity > 0.0;
-    }
+    void keep_genus() { search_handles_ = false; }
     // Beyond the paper: the side of the surface each point was taken from, a unit normal per
     // point (in the transformed space) or 0 where it is not known (sample_sides.h). From here on a
     // sample whose winner's fan faces away from its side is not learnt (Statistics::side_skips):

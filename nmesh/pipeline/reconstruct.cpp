@@ -52,6 +52,7 @@ Result learn_from(PointSpan cloud, const Parameters& params, const Parameters& l
     // sides keep them apart (sample_sides.h).
     std::vector<Vec3> sides;
     if (solid.mesh) {
+        engine->start_has_shape();
         if (!solid.core) engine->keep_genus();
         sides = sample_sides(cloud, norm.transform, solid.surface, solid.reach, params.threads);
         engine->set_sample_sides(sides.data());
