@@ -1,5 +1,5 @@
-// nmesh/learn/solid_core.h — the genus-0 core of a voxel solid: its cells grown from the deepest
-// one outwards, each only while adding it keeps the grown part a ball.
+// nmesh/learn/solid_core.h — the genus-0 core of a voxel solid: its cells grown from one of them
+// in a ranked order, each only while adding it keeps the grown part a ball.
 //
 // A solid walled round by an offset closes the gaps between samples and, where two parts of the
 // object lie closer than twice the offset (the camel's tail along its body), the gaps between

@@ -461,8 +461,10 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform, st
         for (const Grid* q : {&coarse, static_cast<const Grid*>(&grids[0])}) {
             const bool fine = q != &coarse;
             const std::vector<std::uint8_t>& qd = fine ? dist[0] : coarse_dist;
-            classify(qd, fine ? level[0] : outside_levels(q->dims, qd), out.offset * d / q->h, state);
-            if (surface_topology(*q, state).first != 1) continue;
+            const auto [shell, inside] =
+                classify(qd, fine ? level[0] : outside_levels(q->dims, qd), out.offset * d / q->h, state);
+            // Walled round (another grid may be what walled the offset) in one component.
+            if (double(inside) < kMinInside * double(shell) || surface_topology(*q, state).first != 1) continue;
             // The inside joins first, then the shell from the points outwards: the cuts fall
             // where the shell is farthest from the points, in a gap it closes between two parts.
             std::vector<std::uint16_t> rank(state.size());
