@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "nmesh/indexed_mesh.h"
+#include "nmesh/learn/simplify.h"
 #include "nmesh/mesh/mesh.h"
 #include "nmesh/point_span.h"
 #include "nmesh/spatial/point_transform.h"
@@ -133,12 +134,6 @@ SolidStart solid_start(PointSpan points, const PointTransform& transform, std::u
 inline constexpr std::uint32_t kMaxStart = 2000;
 inline std::uint32_t start_vertices(std::uint32_t target) { return std::min(target / 2, kMaxStart); }
 
-// Simplifies a closed mesh (with or without its face index) to `n` vertices by edge collapses,
-// each to its midpoint: in passes over the shortest quarter of the edges, shortest first, no two
-// collapses of a pass on one ring, skipping those the link condition refuses, that would turn a
-// triangle over or leave a vertex with more than 10 neighbours. Keeps the genus. Returns false
-// when it stops above n (no collapse left).
-bool simplify(Mesh& mesh, std::uint32_t n);
 
 namespace solid_detail {
 // For each cell of a grid of `dims` cells (x fastest) with distances `dist` (squared, in cells,
