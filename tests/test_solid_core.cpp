@@ -202,3 +202,35 @@ TEST_CASE("the core cuts a handle where the rank is lowest, and leaves a cavity 
     CHECK(kuhn_topology(dims, core3).euler == 1);
     CHECK(count(core3) < count(solid_of(hollow)));
 }
+
+TEST_CASE("a cut that crosses no point's splat is a false handle, one across points a real one") {
+    const std::uint32_t n = 24;
+    const double c = (n - 1) / 2.0;
+    const Dims dims{n, n, n};
+    const auto torus = ranks(n, [&](int x, int y, int z) { return std::uint16_t(in_torus(x, y, z, c, 7.0, 3.0) ? 1 : 0); });
+    const auto core = genus_zero_core(dims, torus);
+    // Points everywhere on the solid (every cell on a splat): the cut crosses material, the
+    // handle is the object's and stays.
+    const std::vector<std::uint8_t> on_points(torus.size(), 0);
+    const FalseHandles real = without_false_handles(dims, torus, core, on_points);
+    CHECK(real.cuts == 0);
+    CHECK(real.solid == solid_of(torus));
+    CHECK(kuhn_topology(dims, real.solid).euler == 0);
+    // No point near the cut: a gap the offset closed; the handle goes.
+    std::vector<std::uint8_t> off_points(torus.size(), 0);
+    std::size_t cut = 0;
+    for (std::size_t i = 0; i < torus.size(); ++i)
+        if (torus[i] && !core[i]) off_points[i] = 4, ++cut;
+    REQUIRE(cut > 0);
+    const FalseHandles fake = without_false_handles(dims, torus, core, off_points);
+    CHECK(fake.cuts == 1);
+    CHECK(count(fake.solid) == count(solid_of(torus)) - cut);
+    CHECK(kuhn_topology(dims, fake.solid).euler == 1);
+    // One cell of the cut on a point is enough to keep it.
+    for (std::size_t i = 0; i < torus.size(); ++i)
+        if (off_points[i]) {
+            off_points[i] = 0;
+            break;
+        }
+    CHECK(without_false_handles(dims, torus, core, off_points).cuts == 0);
+}

@@ -81,14 +81,22 @@ bool simple_cell(std::uint32_t neighbours) {
     return table[neighbours & 0x3fffu] != 0;
 }
 
-std::vector<std::uint8_t> genus_zero_core(const std::array<std::uint32_t, 3>& dims, const std::vector<std::uint16_t>& rank) {
-    auto solid = [&](std::size_t i) { return rank[i] != 0; };
-    const std::uint32_t nx = dims[0], ny = dims[1];
-    std::int64_t step[14];
-    for (int e = 0; e < 7; ++e) {
-        step[2 * e] = kKuhnEdges[e][0] + std::int64_t(nx) * (kKuhnEdges[e][1] + std::int64_t(ny) * kKuhnEdges[e][2]);
+namespace {
+
+std::array<std::int64_t, 14> kuhn_steps(const std::array<std::uint32_t, 3>& dims) {
+    std::array<std::int64_t, 14> step{};
+    for (std::size_t e = 0; e < 7; ++e) {
+        step[2 * e] = kKuhnEdges[e][0] + std::int64_t(dims[0]) * (kKuhnEdges[e][1] + std::int64_t(dims[1]) * kKuhnEdges[e][2]);
         step[2 * e + 1] = -step[2 * e];
     }
+    return step;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> genus_zero_core(const std::array<std::uint32_t, 3>& dims, const std::vector<std::uint16_t>& rank) {
+    auto solid = [&](std::size_t i) { return rank[i] != 0; };
+    const std::array<std::int64_t, 14> step = kuhn_steps(dims);
     const std::size_t n = rank.size();
     // Depth: Kuhn-edge steps from the nearest cell off the solid (a breadth-first search from
     // them). The solid keeps off the border layer, so a solid cell's neighbours are in the grid.
@@ -137,10 +145,41 @@ std::vector<std::uint8_t> genus_zero_core(const std::array<std::uint32_t, 3>& di
         queue.pop();
         queued[i] = 0;
         std::uint32_t neighbours = 0;
-        for (int b = 0; b < 14; ++b) neighbours |= std::uint32_t(core[std::size_t(std::int64_t(i) + step[b])] != 0) << b;
+        for (int b = 0; b < 14; ++b) neighbours |= std::uint32_t(core[std::size_t(std::int64_t(i) + step[std::size_t(b)])] != 0) << b;
         if (simple_cell(neighbours)) join(i);
     }
     return core;
+}
+
+FalseHandles without_false_handles(const std::array<std::uint32_t, 3>& dims, const std::vector<std::uint16_t>& rank,
+                                   const std::vector<std::uint8_t>& core, const std::vector<std::uint8_t>& dist) {
+    const std::array<std::int64_t, 14> step = kuhn_steps(dims);
+    FalseHandles out;
+    out.solid.resize(rank.size());
+    for (std::size_t i = 0; i < rank.size(); ++i) out.solid[i] = rank[i] != 0;
+    std::vector<std::uint8_t> seen(rank.size(), 0);
+    std::vector<std::uint32_t> piece, stack;
+    for (std::uint32_t i = 0; i < rank.size(); ++i) {
+        if (!rank[i] || core[i] || seen[i]) continue;
+        piece.clear();
+        stack.assign(1, i);
+        seen[i] = 1;
+        bool on_points = false;
+        while (!stack.empty()) {
+            const std::uint32_t j = stack.back();
+            stack.pop_back();
+            piece.push_back(j);
+            on_points = on_points || dist[j] == 0;
+            for (const std::int64_t s : step) {
+                const std::uint32_t k = std::uint32_t(std::int64_t(j) + s);
+                if (rank[k] && !core[k] && !seen[k]) seen[k] = 1, stack.push_back(k);
+            }
+        }
+        if (on_points) continue;
+        ++out.cuts;
+        for (const std::uint32_t j : piece) out.solid[j] = 0;
+    }
+    return out;
 }
 
 }  // namespace nmesh

@@ -47,4 +47,18 @@ bool simple_cell(std::uint32_t neighbours);
 // O(cells log cells).
 std::vector<std::uint8_t> genus_zero_core(const std::array<std::uint32_t, 3>& dims, const std::vector<std::uint16_t>& rank);
 
+// The handles an offset made between two parts of an object, told from the object's own: the
+// core's cuts (the solid's cells left out of `core`), in pieces joined along Kuhn edges. A cut
+// across a handle of the object crosses its material, so some cell of the piece lies on a
+// point's splat (`dist` 0: solid_start's squared cell distances); a piece none of whose cells
+// does crosses only a gap the offset closed (measured: every cut of the shared and corpus clouds'
+// handles holds such a cell; docs/algorithm.md). Returns the flags of the solid's cells less
+// those pieces, and how many pieces there were.
+struct FalseHandles {
+    std::vector<std::uint8_t> solid;
+    std::uint32_t cuts = 0;
+};
+FalseHandles without_false_handles(const std::array<std::uint32_t, 3>& dims, const std::vector<std::uint16_t>& rank,
+                                   const std::vector<std::uint8_t>& core, const std::vector<std::uint8_t>& dist);
+
 }  // namespace nmesh

@@ -155,6 +155,27 @@ std::pair<std::uint64_t, std::uint64_t> classify(const std::vector<std::uint8_t>
     return {shell, inside};
 }
 
+// The order in which the genus-0 core takes the solid's cells (solid_core.h): the inside first,
+// then the shell from the points outwards, so that the cuts fall where the shell is farthest from
+// the points, in a gap it closes between two parts; 0 off the solid.
+std::vector<std::uint16_t> core_ranks(const std::vector<std::uint8_t>& state, const std::vector<std::uint8_t>& dist) {
+    std::vector<std::uint16_t> rank(state.size());
+    for (std::size_t i = 0; i < state.size(); ++i)
+        rank[i] = state[i] == kOutside ? 0 : state[i] == kFree ? 257 : std::uint16_t(256 - dist[i]);
+    return rank;
+}
+
+// The handles the offset made between two parts (solid_core.h: without_false_handles) taken out
+// of the solid `state` (their cuts' cells made outside). Returns how many.
+std::uint32_t drop_false_handles(const Grid& g, const std::vector<std::uint8_t>& dist, std::vector<std::uint8_t>& state) {
+    const std::vector<std::uint16_t> rank = core_ranks(state, dist);
+    const FalseHandles f = without_false_handles(g.dims, rank, genus_zero_core(g.dims, rank), dist);
+    if (f.cuts > 0)
+        for (std::size_t i = 0; i < state.size(); ++i)
+            if (!f.solid[i]) state[i] = kOutside;
+    return f.cuts;
+}
+
 // The components and the genus of the solid's outer surface (the marching tetrahedra surface of
 // outer_surface()), counted on the grid without building it: its vertices are the Kuhn edges
 // between the solid and the outside, its faces one per tetrahedron with one corner apart from the
@@ -465,12 +486,7 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform, st
                 classify(qd, fine ? level[0] : outside_levels(q->dims, qd), out.offset * d / q->h, state);
             // Walled round (another grid may be what walled the offset) in one component.
             if (double(inside) < kMinInside * double(shell) || surface_topology(*q, state).first != 1) continue;
-            // The inside joins first, then the shell from the points outwards: the cuts fall
-            // where the shell is farthest from the points, in a gap it closes between two parts.
-            std::vector<std::uint16_t> rank(state.size());
-            for (std::size_t i = 0; i < state.size(); ++i)
-                rank[i] = state[i] == kOutside ? 0 : state[i] == kFree ? 257 : std::uint16_t(256 - qd[i]);
-            const std::vector<std::uint8_t> core = genus_zero_core(q->dims, rank);
+            const std::vector<std::uint8_t> core = genus_zero_core(q->dims, core_ranks(state, qd));
             for (std::size_t i = 0; i < state.size(); ++i) state[i] = core[i] ? kFree : kOutside;
             assert(surface_topology(*q, state) == std::make_pair(std::uint32_t(1), 0));  // a ball's surface
             (fine ? out.fine_surface : out.surface) = outer_surface(*q, state);
@@ -479,6 +495,22 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform, st
         if (out.surface.triangles.empty()) out.surface = out.fine_surface;
         return out;
     }
+    // Handles the offset made between two parts (their cuts cross no point's splat) are not the
+    // object's: read on the first grid, the genus is that of the solid without them, and they are
+    // taken out of every surface built below.
+    if (out.genus > 0) {
+        prepare(0, out.offset);
+        classify(dist[0], level[0], out.offset * d / g.h, state);
+        if (surface_topology(grids[0], state) == std::make_pair(std::uint32_t(1), out.genus) &&
+            drop_false_handles(grids[0], dist[0], state) > 0) {
+            const auto [components, genus] = surface_topology(grids[0], state);
+            if (components == 1) out.false_handles = out.genus - genus, out.genus = genus;
+        }
+    }
+    const auto solid_of = [&](const Grid& q, const std::vector<std::uint8_t>& qd) {
+        if (out.false_handles > 0) drop_false_handles(q, qd, state);
+        return surface_topology(q, state) == std::make_pair(std::uint32_t(1), out.genus);
+    };
     if (out.genus == 0 && out.offset > kMaxShapeOffset) return out;  // no start: no surface to build
     // The start's surface: from cells twice as large (the unshifted grid's) when those give the
     // same topology at that offset or the next (a quarter of the triangles to simplify, and a
@@ -493,7 +525,7 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform, st
         const std::vector<std::uint8_t> coarse_level = outside_levels(coarse.dims, coarse_dist);
         for (const float offset : {out.offset, next != std::end(kOffsets) ? *next : out.offset}) {
             classify(coarse_dist, coarse_level, offset * d / coarse.h, state);
-            if (surface_topology(coarse, state) != std::make_pair(std::uint32_t(1), out.genus)) continue;
+            if (!solid_of(coarse, coarse_dist)) continue;
             out.surface = outer_surface(coarse, state);
             break;
         }
@@ -501,8 +533,7 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform, st
     for (int k = 0; k < kGrids && out.fine_surface.triangles.empty(); ++k) {
         prepare(k, out.offset);
         classify(dist[k], level[k], out.offset * d / g.h, state);
-        if (surface_topology(grids[k], state) == std::make_pair(std::uint32_t(1), out.genus))
-            out.fine_surface = outer_surface(grids[k], state);
+        if (solid_of(grids[k], dist[k])) out.fine_surface = outer_surface(grids[k], state);
     }
     if (out.surface.triangles.empty()) out.surface = out.fine_surface;
     return out;

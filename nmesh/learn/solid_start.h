@@ -31,6 +31,9 @@
 //     no genus persists, the solid is not read: where it walls round within kMaxShapeOffset in
 //     one component, its genus-0 core (solid_core.h) is the start, the handles left to the
 //     learning's search; otherwise the learning starts from the tetrahedron;
+//   - a handle whose cut in the solid's genus-0 core crosses no point's splat was made by the
+//     offset between two parts: the genus is read, and the surfaces built, without it
+//     (solid_core.h: without_false_handles);
 //   - the start is the outer surface simplified to start_vertices(target) vertices (simplify);
 //   - the grid has at most kMaxVoxels cells (larger voxels for a cloud that would need more):
 //     one byte each for the distances, the states and the components' flood, 50 MB at most
@@ -104,6 +107,9 @@ struct SolidSurface {
     // (solid_core.h) of the solid at `offset`: a start with the object's shape, whose handles are
     // not known.
     bool core = false;
+    // Handles of the solid that are not the object's (solid_core.h: without_false_handles),
+    // taken out: `genus` and the surfaces are the solid's without them.
+    int false_handles = 0;
 };
 
 // The solid `points` (through `transform`) wall round, and its outer surface. O(P + voxels).
