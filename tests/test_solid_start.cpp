@@ -319,6 +319,13 @@ TEST_CASE("where no genus persists, the start is the solid's genus-0 core") {
     CHECK(start.core);
     CHECK(start.solid_genus == -1);
     CHECK_FALSE(start.surface.triangles.empty());  // the points' sides
+    // Seeds whose first walled offset (3.5 d) is walled on a shifted grid only: the core is taken
+    // at the next offset the first grid walls round itself.
+    for (const std::uint64_t seed : {1u, 8u}) {
+        const SolidSurface other = solid_of(tailed_ball(seed));
+        CHECK(other.core);
+        CHECK(other.offset == 4.0f);
+    }
 
     if (test::kSanitized) return;  // the reconstruction's checks run in the plain build
     Parameters p;

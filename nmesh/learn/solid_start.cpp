@@ -476,21 +476,27 @@ SolidSurface solid_surface(PointSpan points, const PointTransform& transform, st
         // the larger cells when they hold one component too; the fine cells' core gives the
         // points' sides, as the fine surface does.
         if (!out.walled || out.offset > kMaxShapeOffset) return out;
+        // The first offset from there to kMaxShapeOffset at which the first grid (or its larger
+        // cells) walls the solid round itself: another grid may be what walled the first one.
         const Grid coarse = grid_over(box, 2.0f * g.h, largest + 4.0f * g.h);
-        const std::vector<std::uint8_t> coarse_dist = grid_distances(coarse, out.offset * d);
-        prepare(0, out.offset);
-        for (const Grid* q : {&coarse, static_cast<const Grid*>(&grids[0])}) {
-            const bool fine = q != &coarse;
-            const std::vector<std::uint8_t>& qd = fine ? dist[0] : coarse_dist;
-            const auto [shell, inside] =
-                classify(qd, fine ? level[0] : outside_levels(q->dims, qd), out.offset * d / q->h, state);
-            // Walled round (another grid may be what walled the offset) in one component.
-            if (double(inside) < kMinInside * double(shell) || surface_topology(*q, state).first != 1) continue;
-            const std::vector<std::uint8_t> core = genus_zero_core(q->dims, core_ranks(state, qd));
-            for (std::size_t i = 0; i < state.size(); ++i) state[i] = core[i] ? kFree : kOutside;
-            assert(surface_topology(*q, state) == std::make_pair(std::uint32_t(1), 0));  // a ball's surface
-            (fine ? out.fine_surface : out.surface) = outer_surface(*q, state);
-            out.core = true;
+        for (const float offset : kOffsets) {
+            if (offset < out.offset || offset > kMaxShapeOffset || out.core) continue;
+            const std::vector<std::uint8_t> coarse_dist = grid_distances(coarse, offset * d);
+            prepare(0, offset);
+            for (const Grid* q : {&coarse, static_cast<const Grid*>(&grids[0])}) {
+                const bool fine = q != &coarse;
+                const std::vector<std::uint8_t>& qd = fine ? dist[0] : coarse_dist;
+                const auto [shell, inside] =
+                    classify(qd, fine ? level[0] : outside_levels(q->dims, qd), offset * d / q->h, state);
+                // Walled round in one component.
+                if (double(inside) < kMinInside * double(shell) || surface_topology(*q, state).first != 1) continue;
+                const std::vector<std::uint8_t> core = genus_zero_core(q->dims, core_ranks(state, qd));
+                for (std::size_t i = 0; i < state.size(); ++i) state[i] = core[i] ? kFree : kOutside;
+                assert(surface_topology(*q, state) == std::make_pair(std::uint32_t(1), 0));  // a ball's surface
+                (fine ? out.fine_surface : out.surface) = outer_surface(*q, state);
+                out.core = true;
+            }
+            if (out.core) out.offset = offset;
         }
         if (out.surface.triangles.empty()) out.surface = out.fine_surface;
         return out;
