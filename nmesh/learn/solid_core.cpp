@@ -81,8 +81,6 @@ bool simple_cell(std::uint32_t neighbours) {
     return table[neighbours & 0x3fffu] != 0;
 }
 
-namespace {
-
 std::array<std::int64_t, 14> kuhn_steps(const std::array<std::uint32_t, 3>& dims) {
     std::array<std::int64_t, 14> step{};
     for (std::size_t e = 0; e < 7; ++e) {
@@ -91,8 +89,6 @@ std::array<std::int64_t, 14> kuhn_steps(const std::array<std::uint32_t, 3>& dims
     }
     return step;
 }
-
-}  // namespace
 
 std::vector<std::uint8_t> genus_zero_core(const std::array<std::uint32_t, 3>& dims, const std::vector<std::uint16_t>& rank) {
     auto solid = [&](std::size_t i) { return rank[i] != 0; };

@@ -34,6 +34,10 @@ namespace nmesh {
 inline constexpr int kTets[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
 inline constexpr int kKuhnEdges[7][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
 
+// The index steps from a cell to its 14 Kuhn neighbours on a grid of `dims` cells (x fastest), in
+// the order of simple_cell's bits.
+std::array<std::int64_t, 14> kuhn_steps(const std::array<std::uint32_t, 3>& dims);
+
 // Whether a cell whose Kuhn neighbours in the part are the set bits of `neighbours` (bit 2e: the
 // neighbour at +kKuhnEdges[e], bit 2e + 1: at -kKuhnEdges[e]) joins the part without changing its
 // topology (see above). A table of the 2^14 sets, made on the first call.

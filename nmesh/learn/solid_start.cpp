@@ -212,12 +212,7 @@ std::pair<std::uint32_t, int> surface_topology(const Grid& g, const std::vector<
             }
     // Components of the solid along the Kuhn edges, both ways (a solid cell's neighbours are all
     // in the grid: the padding keeps the solid two cells off the border).
-    std::int64_t step[14];
-    for (int e = 0; e < 7; ++e) {
-        step[2 * e] = std::int64_t(g.index(std::uint32_t(kKuhnEdges[e][0]), std::uint32_t(kKuhnEdges[e][1]),
-                                           std::uint32_t(kKuhnEdges[e][2])));
-        step[2 * e + 1] = -step[2 * e];
-    }
+    const std::array<std::int64_t, 14> step = kuhn_steps(g.dims);
     std::vector<char> seen(g.size(), 0);
     std::vector<std::uint32_t> stack;
     std::uint32_t components = 0;
