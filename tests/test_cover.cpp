@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "mesh_fixtures.h"
@@ -200,5 +201,51 @@ TEST_CASE("the finishing stage covers a tip the mesh left short, and reports the
     o.cover_iterations = 0;
     const FinishReport without = finish_mesh(d.mesh, d.cloud, o);
     CHECK(without.cover_moves == 0);
+    CHECK(norm(d.mesh.position(vertex_towards(d.mesh, tip))) == doctest::Approx(1.0f));
+}
+
+TEST_CASE("a fold steeper than the cover's limit keeps its corners and holds back no other move") {
+    // A fin: two neighbouring vertices of the icosphere drawn out to three times the radius, so
+    // that their triangles fold back to back (beyond kCoverFoldDeg), with a cluster beyond its
+    // tip; and a tip left short on the other side.
+    const Vec3 fin(1.0f, 0.2f, 0.1f), tip = -normalized(fin);
+    const auto make = [&] {
+        Case c = sphere_case({});
+        const Vertex a = vertex_towards(c.mesh, fin);
+        Vertex b;
+        float most = -2.0f;
+        c.mesh.for_each_outgoing_cw(a, [&](Halfedge h) {
+            const Vertex u = c.mesh.to(h);
+            if (dot(c.mesh.position(u), fin) > most) most = dot(c.mesh.position(u), fin), b = u;
+        });
+        c.mesh.set_position(a, c.mesh.position(a) * 3.0f);
+        c.mesh.set_position(b, c.mesh.position(b) * 3.0f);
+        const std::vector<Vec3> beyond = cluster(c.mesh.position(a) * 1.2f, 12, 0.02f, 5);
+        const std::vector<Vec3> short_tip = cluster(tip * 1.4f, 12, 0.02f, 6);
+        c.cloud = c.mesh.positions();
+        c.cloud.insert(c.cloud.end(), beyond.begin(), beyond.end());
+        c.cloud.insert(c.cloud.end(), short_tip.begin(), short_tip.end());
+        return std::make_pair(c, std::make_pair(a, b));
+    };
+    auto [c, fin_ends] = make();
+    REQUIRE(find_self_intersections(c.mesh).empty());
+    const std::vector<Edge> steep = find_folded_edges(c.mesh, kCoverFoldDeg);
+    REQUIRE(!steep.empty());
+    const Mesh before = c.mesh;
+    const CloudSurface surface(c.cloud, c.mesh);
+    const CoverResult r = cover_uncovered_points(c.mesh, surface, 3, 0.5f, steep);
+    CHECK(r.moves == 2);
+    CHECK(r.undone == 0);
+    CHECK(c.mesh.position(fin_ends.first) == before.position(fin_ends.first));
+    CHECK(c.mesh.position(fin_ends.second) == before.position(fin_ends.second));
+    CHECK(norm(c.mesh.position(vertex_towards(c.mesh, tip))) == doctest::Approx(1.3).epsilon(0.01));
+    CHECK(find_self_intersections(c.mesh).empty());
+    CHECK(find_folded_edges(c.mesh, kCoverFoldDeg) == steep);
+    // Not told of the fold, the cover draws the fin's tip out, the fold stays, and every move
+    // of the iteration is undone: the short tip stays short.
+    auto [d, unused] = make();
+    const CloudSurface surface_d(d.cloud, d.mesh);
+    const CoverResult rd = cover_uncovered_points(d.mesh, surface_d, 3, 0.5f);
+    CHECK(rd.moves == 0);
     CHECK(norm(d.mesh.position(vertex_towards(d.mesh, tip))) == doctest::Approx(1.0f));
 }

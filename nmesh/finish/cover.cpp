@@ -14,9 +14,16 @@ namespace nmesh {
 
 using namespace finish_detail;
 
-CoverResult cover_uncovered_points(Mesh& mesh, const CloudSurface& cloud, int iterations, float weight) {
+CoverResult cover_uncovered_points(Mesh& mesh, const CloudSurface& cloud, int iterations, float weight,
+                                   const std::vector<Edge>& steep_folds) {
     CoverResult result;
     if (iterations <= 0 || mesh.n_faces() == 0) return result;
+    std::vector<std::uint8_t> fixed(mesh.vertex_capacity(), 0);
+    for (const Edge e : steep_folds) {
+        const Halfedge h = Mesh::halfedge(e, 0);
+        for (const Face f : {mesh.face(h), mesh.face(Mesh::twin(h))})
+            for (const Vertex v : corners(mesh, f)) fixed[v.idx] = 1;
+    }
     DefectTracker tracker(mesh, std::cos(kCoverFoldDeg * kPiF / 180.0f), true);
     const float reach = kCoverReach * mean_edge_length(mesh);
     const std::vector<Vec3>& points = cloud.points();
@@ -38,7 +45,7 @@ CoverResult cover_uncovered_points(Mesh& mesh, const CloudSurface& cloud, int it
         for (std::size_t k = 0; k < n; ++k) {
             const std::uint32_t i = it == 0 ? std::uint32_t(k) : uncovered[k];
             const Vertex v = verts[index->nearest(points[i])];
-            if (mesh.is_boundary(v) || distance_to_ring(mesh, v, points[i]) <= reach) continue;
+            if (mesh.is_boundary(v) || fixed[v.idx] || distance_to_ring(mesh, v, points[i]) <= reach) continue;
             sum[v.idx] += points[i] - mesh.position(v);
             ++count[v.idx];
             if (it == 0)

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "nmesh/finish/cloud_surface.h"
 #include "nmesh/mesh/mesh.h"
@@ -33,10 +34,14 @@ struct CoverResult {
 // vertex crosses another one, or folds (kCoverFoldDeg), is halved, twice, then undone; if that
 // does not clear the mesh, all of the iteration's moves are undone and the iterations stop. A
 // boundary vertex stays.
-// Precondition: `mesh` has no crossing triangles and no edge folded beyond kCoverFoldDeg (the
-// repair's result); it is not searched for them. O(points + vertices) per iteration (the cloud
+// `steep_folds`: the edges folded beyond kCoverFoldDeg that the repair left (a tail's tip folded
+// flat); the corners of their triangles stay, so that the folds stay as they are and the moves
+// elsewhere are judged on their own.
+// Precondition: `mesh` has no crossing triangles and no edge folded beyond kCoverFoldDeg but
+// `steep_folds`; it is not searched for them. O(points + vertices) per iteration (the cloud
 // surface holds at most Parameters::index_points_per_vertex points per target vertex), plus the
 // checks of the moved triangles.
-CoverResult cover_uncovered_points(Mesh& mesh, const CloudSurface& cloud, int iterations = 3, float weight = 0.5f);
+CoverResult cover_uncovered_points(Mesh& mesh, const CloudSurface& cloud, int iterations = 3, float weight = 0.5f,
+                                   const std::vector<Edge>& steep_folds = {});
 
 }  // namespace nmesh

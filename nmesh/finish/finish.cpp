@@ -151,11 +151,14 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
         }
         report.intersecting_pairs_after = r.intersecting_pairs;
         report.folded_edges_after = r.folded_edges;
-        // Step 3, on a mesh the repair left without defects (none at its fold limit, so none at
-        // the cover's, which is larger).
-        if (pull && report.intersecting_pairs_after == 0 && report.folded_edges_after == 0 &&
-            options.fold_dihedral_deg <= kCoverFoldDeg)
-            report.cover_moves = cover_uncovered_points(mesh, *pull, options.cover_iterations).moves;
+        // Step 3, on a mesh the repair left without crossing pairs. A fold it left steeper than the
+        // cover's limit (above the repair's) stays as it is: the corners of its triangles do not
+        // move (one such fold at the triceratops's tail tip held back the cover of its horns).
+        if (pull && report.intersecting_pairs_after == 0 && options.fold_dihedral_deg <= kCoverFoldDeg) {
+            const std::vector<Edge> steep =
+                report.folded_edges_after == 0 ? std::vector<Edge>() : find_folded_edges(mesh, kCoverFoldDeg);
+            report.cover_moves = cover_uncovered_points(mesh, *pull, options.cover_iterations, 0.5f, steep).moves;
+        }
     }
     // The surface fit, last, on whatever the repair left: the corners of a defect left stay, and no move that
     // makes a new one is kept. Known clean when the repair left none at its fold limit.

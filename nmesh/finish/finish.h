@@ -94,8 +94,10 @@ struct FinishOptions {
     // Cover (step 3): iterations of cover_uncovered_points (nmesh/finish/cover.h), which draws
     // vertices out to the scan points the surface leaves more than half an edge away (a tip the
     // learning left short or the repair took back); only on a mesh the repair left without
-    // defects, and only with `project`. 0 skips it.
-    int cover_iterations = 3;
+    // crossing pairs, and only with `project`. 0 skips it. Each iteration moves a vertex half way
+    // to its uncovered points: 8 reach a horn tip left about an edge short (3 left the
+    // triceratops's brow horns 1.4% of the diagonal short at 5,000 vertices; docs/algorithm.md).
+    int cover_iterations = 8;
     // Surface fit (the last step): rounds of fit_surface (nmesh/finish/surface_fit.h), which moves the
     // vertices to where the triangles best match the scan points (a least-squares fit); only with
     // `project`. 0 skips it.
