@@ -50,6 +50,11 @@ struct Parameters {
     // holes a few spacings across (the bunny's three small base holes). A smaller value opens
     // smaller holes, and sparse parts of a scan with them.
     float min_hole = 0.0f;
+    // Beyond the paper: a point whose 8th nearest neighbour lies farther than this many times the
+    // cloud's median of that distance is a stray sample (a scanner's point in the air) and is left
+    // out before the learning (nmesh/pipeline/stray_points.h), in [0, 1000]; 0 keeps every point.
+    // A surface sampled at random reaches about 2, the sparse parts of a real scan 4.
+    float stray_ratio = 6.0f;
     // Beyond the paper, topology closed and open from the solid's start: how much a win counts by
     // the winner's distance to the sample (step 5: tau_w += 1 + adaptivity * d^2 / mean d^2), in
     // [0, 100]. 0 is the paper's signal counter, whose splits follow the density of the samples;

@@ -69,8 +69,9 @@ struct Result {
 // Throws ParameterError for invalid parameters and InputError for a cloud that cannot be
 // reconstructed (fewer than 4 distinct points, or all points on one line) or that cannot carry
 // the target size (the mesh stopped growing below it: no larger mesh in 8 step-8 periods).
-// The cloud is normalised internally (centre and a power-of-two scale), so the result does not
-// depend on the cloud's units.
+// The cloud's stray points (Parameters::stray_ratio) are left out first, and the rest is
+// normalised internally (centre and a power-of-two scale), so the result does not depend on the
+// cloud's units.
 Result reconstruct(PointSpan cloud, const Parameters& params = {}, const Callbacks& callbacks = {});
 inline Result reconstruct(const PointCloud& cloud, const Parameters& params = {}, const Callbacks& callbacks = {}) {
     return reconstruct(PointSpan(cloud.points), params, callbacks);

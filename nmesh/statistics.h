@@ -39,6 +39,8 @@ struct Statistics {
     // Starts whose learning stopped growing before the target and was begun again from the next
     // start (reconstruct(): the solid's surface, the tetrahedron, the paper's learning).
     std::uint64_t start_retries = 0;
+    // Points left out as stray before the learning (Parameters::stray_ratio).
+    std::uint64_t stray_points = 0;
     std::uint64_t start_vertices = 4;
     // Topology learning (Parameters::topology closed, nmesh/learn/handles.h): searches made,
     // cap-like unsupported patches found over them, handles made, faces cut out for them.

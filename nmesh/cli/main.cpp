@@ -64,6 +64,9 @@ constexpr const char* kReconstructUsage =
     "  --min-hole S           open: the smallest hole to open, the distance from its middle to the\n"
     "                         nearest point in local point spacings (default 0: holes several\n"
     "                         spacings deep open, the sampling's gaps and small holes stay closed)\n"
+    "  --stray-ratio R        leave out the stray points: those whose 8th nearest neighbour is more\n"
+    "                         than R times the cloud's median of that distance away (default 6;\n"
+    "                         0 keeps every point)\n"
     "  --no-solid-start       closed and open: grow from a tetrahedron, not from the solid the cloud\n"
     "                         walls round (the handles then come from the handle search)\n"
     "  --no-fold-guard        let step 3 fold the winner's triangles, as the paper's algorithm does\n"
@@ -158,6 +161,10 @@ void print_summary(const Result& r, const std::string& output) {
     else
         std::fprintf(stderr, "nmesh: genus %d, %llu boundary loops (%llu handles learnt)\n", s.genus,
                      (unsigned long long)s.boundary_loops, (unsigned long long)s.handles);
+    if (s.stray_points > 0)
+        std::fprintf(stderr,
+                     "nmesh: left out %llu stray points, far from the others (--stray-ratio 0 keeps them)\n",
+                     (unsigned long long)s.stray_points);
     if (s.twist_retries > 0 || s.output_retries > 0)
         std::fprintf(stderr,
                      "nmesh: learnt again from a checkpoint: %llu retries where part of the mesh had turned "
@@ -187,7 +194,7 @@ int run_reconstruct(int argc, char** argv) {
         {"--no-edge-swap", "--no-fold-guard", "--no-solid-start", "--no-finish", "--quiet", "--ascii", "--save-on-interrupt"},
         {"-o", "--output", "--vertices", "--alpha-w", "--alpha-n", "--alpha", "--cvs", "--cec", "--seed", "--snapshots",
          "--stats", "--settle", "--finish-rounds", "--fit-rounds", "--surface-fit-rounds", "--index-points",
-         "--topology", "--min-hole", "--adaptivity", "--threads"});
+         "--topology", "--min-hole", "--stray-ratio", "--adaptivity", "--threads"});
     if (args.positional().size() != 1) throw UsageError("reconstruct takes one INPUT file");
     const std::string input = args.positional()[0];
     const std::string output = args.has("-o") ? args.text("-o") : args.text("--output");
@@ -223,6 +230,7 @@ int run_reconstruct(int argc, char** argv) {
     p.cec = bounded_count("--cec", p.cec);
     p.settle = args.number("--settle", p.settle);
     p.min_hole = float(args.number("--min-hole", p.min_hole));
+    p.stray_ratio = float(args.number("--stray-ratio", p.stray_ratio));
     p.adaptivity = args.number("--adaptivity", p.adaptivity);
     p.seed = args.count("--seed", p.seed);
     p.edge_swap = !args.has("--no-edge-swap");

@@ -48,6 +48,8 @@ void Parameters::validate() const {
         bad("threads", "must be in [0, " + std::to_string(kMaxThreads) + "] (0: the machine's cores), got " +
                            std::to_string(threads));
     if (!(min_hole >= 0.0f && min_hole <= 1000.0f)) bad("min_hole", "must be in [0, 1000], got " + std::to_string(min_hole));
+    if (!(stray_ratio >= 0.0f && stray_ratio <= 1000.0f))
+        bad("stray_ratio", "must be in [0, 1000] (0: keep every point), got " + std::to_string(stray_ratio));
 }
 
 }  // namespace nmesh

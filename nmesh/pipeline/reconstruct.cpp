@@ -1,7 +1,7 @@
-// reconstruct(): the pipeline's stages in their order. The cloud is checked and normalised
-// (normalization.h); the learning starts from the solid the cloud walls round or from the
-// tetrahedron (nmesh/learn/solid_start.h); it learns to the target size with its checkpoints
-// (learning.h); the learnt mesh is finished (finishing.h), or, with topology open, finished and
+// reconstruct(): the pipeline's stages in their order. The cloud is checked, its stray points
+// left out (stray_points.h) and the rest normalised (normalization.h); the learning starts from
+// the solid the cloud walls round or from the tetrahedron (nmesh/learn/solid_start.h); it learns
+// to the target size with its checkpoints (learning.h); the learnt mesh is finished (finishing.h), or, with topology open, finished and
 // cut open where the cloud has no data (opening.h); the output is turned outward and checked
 // (output_check.h), and an output that is not valid is learnt again from the last checkpoint.
 #include "nmesh/reconstruct.h"
@@ -12,6 +12,7 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "nmesh/geometry/flatness.h"
 #include "nmesh/learn/neural_mesh.h"
@@ -23,6 +24,7 @@
 #include "nmesh/pipeline/opening.h"
 #include "nmesh/pipeline/output_check.h"
 #include "nmesh/pipeline/reporter.h"
+#include "nmesh/pipeline/stray_points.h"
 
 namespace nmesh {
 
@@ -130,9 +132,15 @@ Result learn_from(PointSpan cloud, const Parameters& params, const Parameters& l
 
 }  // namespace
 
-Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& callbacks) {
+Result reconstruct(PointSpan input, const Parameters& params, const Callbacks& callbacks) {
     params.validate();
     const auto start = Clock::now();
+    require_reconstructible(input);
+    // The scan's stray points are left out (stray_points.h); the rest is the cloud from here on,
+    // normalised on its own box. Every point stays when none is stray.
+    const std::vector<std::uint32_t> strays = stray_points(input, params.stray_ratio, params.threads);
+    const std::vector<Vec3> kept = strays.empty() ? std::vector<Vec3>() : without_points(input, strays);
+    const PointSpan cloud = strays.empty() ? input : PointSpan(kept);
     const Normalization norm(require_reconstructible(cloud));
     // The fold guard is off for a flat cloud: its closed mesh must fold flat, two coinciding sheets.
     Parameters learning = params;
@@ -155,6 +163,7 @@ Result reconstruct(PointSpan cloud, const Parameters& params, const Callbacks& c
         try {
             Result r = learn_from(cloud, params, learning, callbacks, norm, start, solid);
             r.stats.start_retries = stalled;
+            r.stats.stray_points = strays.size();
             return r;
         } catch (const Stalled& e) {
             ++stalled;

@@ -62,6 +62,7 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << "\", \"settle\": " << p.settle << ", \"finish\": " << (p.finish ? "true" : "false")
       << ", \"finish_rounds\": " << p.finish_rounds << ", \"fit_rounds\": " << p.fit_rounds
       << ", \"surface_fit_rounds\": " << p.surface_fit_rounds << ", \"min_hole\": " << p.min_hole
+      << ", \"stray_ratio\": " << p.stray_ratio
       << ", \"adaptivity\": " << p.adaptivity
       << ", \"index_points_per_vertex\": " << p.index_points_per_vertex
       << ", \"threads\": " << resolve_threads(p.threads) << "},\n"
@@ -85,6 +86,7 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << "  \"output_retries\": " << s.output_retries << ",\n"
       << "  \"solid_genus\": " << s.solid_genus << ",\n"
       << "  \"start_retries\": " << s.start_retries << ",\n"
+      << "  \"stray_points\": " << s.stray_points << ",\n"
       << "  \"start_vertices\": " << s.start_vertices << ",\n"
       << "  \"start_core\": " << (s.start_core ? "true" : "false") << ",\n"
       << "  \"topology_checks\": " << s.topology_checks << ",\n"

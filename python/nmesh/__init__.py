@@ -189,6 +189,7 @@ def reconstruct(
     fold_guard: bool = True,
     solid_start: bool = True,
     min_hole: float = 0.0,
+    stray_ratio: float = 6.0,
     adaptivity: float = 0.0,
     finish: bool = True,
     seed: int = 1,
@@ -226,6 +227,9 @@ def reconstruct(
     min_hole: open: the smallest hole to open, the distance from its middle to the nearest point
         in local point spacings (0: the default rule, which keeps the sampling's gaps and holes a
         few spacings across closed).
+    stray_ratio: a point whose 8th nearest neighbour is more than stray_ratio times the cloud's
+        median of that distance away is a stray sample, left out before the learning (0 keeps
+        every point).
     adaptivity: closed and open, from the solid's start: a win counts 1 + adaptivity * (the
         winner's distance / its mean)^2, so that tips and bends get vertices sooner (0: the paper's
         signal counter).
@@ -279,6 +283,7 @@ def reconstruct(
         fold_guard=_flag("fold_guard", fold_guard),
         solid_start=_flag("solid_start", solid_start),
         min_hole=_real("min_hole", min_hole),
+        stray_ratio=_real("stray_ratio", stray_ratio),
         adaptivity=_real("adaptivity", adaptivity),
         finish=_flag("finish", finish),
         seed=_count("seed", seed, _UINT64_MAX),

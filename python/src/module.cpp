@@ -172,7 +172,7 @@ py::tuple reconstruct(const py::array& points, std::uint32_t target_vertices, do
                       std::uint64_t seed, double settle, std::uint32_t finish_rounds, std::uint32_t fit_rounds,
                       std::uint32_t surface_fit_rounds, std::uint32_t index_points_per_vertex,
                       const std::string& topology, bool fold_guard, bool solid_start, double min_hole,
-                      double adaptivity, std::uint32_t threads, const py::object& progress, bool metrics) {
+                      double stray_ratio, double adaptivity, std::uint32_t threads, const py::object& progress, bool metrics) {
     const nmesh::PointSpan cloud = point_view(points, "points");  // `points` is kept alive by the caller's frame
     nmesh::Parameters params;
     params.target_vertices = target_vertices;
@@ -193,6 +193,7 @@ py::tuple reconstruct(const py::array& points, std::uint32_t target_vertices, do
     params.fold_guard = fold_guard;
     params.solid_start = solid_start;
     params.min_hole = float(min_hole);
+    params.stray_ratio = float(stray_ratio);
     params.adaptivity = adaptivity;
     params.threads = threads;
     validate(params);  // before the GIL is released: a bad parameter costs nothing
@@ -307,7 +308,7 @@ PYBIND11_MODULE(_nmesh, m) {
     m.def("reconstruct", &reconstruct, arg("points"), arg("target_vertices"), arg("alpha_w"), arg("alpha_n"),
           arg("alpha"), arg("cvs"), arg("cec"), arg("edge_swap"), arg("finish"), arg("seed"), arg("settle"),
           arg("finish_rounds"), arg("fit_rounds"), arg("surface_fit_rounds"), arg("index_points_per_vertex"),
-          arg("topology"), arg("fold_guard"), arg("solid_start"), arg("min_hole"), arg("adaptivity"), arg("threads"),
+          arg("topology"), arg("fold_guard"), arg("solid_start"), arg("min_hole"), arg("stray_ratio"), arg("adaptivity"), arg("threads"),
           arg("progress").none(true), arg("metrics"),
           "Learns a mesh from a float32 (N, 3) C-contiguous array, read in place; returns "
           "(vertices, faces, stats JSON, cancelled).");

@@ -86,8 +86,8 @@ def test_float32_points_are_not_copied(bunny: np.ndarray) -> None:
     assert nmesh._as_points(bunny) is bunny
     assert nmesh._as_points(bunny.astype(np.float64)) is not bunny
     # ...and the extension reads only such arrays, in place: it never converts one itself.
-    args = (400, 0.08, 0.01, 0.95, 100, 20, True, True, 1, 0.0, 10, 0, 4, 64, "closed", True, True, 0.0, 0.0, 1, None,
-            False)
+    args = (400, 0.08, 0.01, 0.95, 100, 20, True, True, 1, 0.0, 10, 0, 4, 64, "closed", True, True, 0.0, 6.0, 0.0, 1,
+            None, False)
     for other in (bunny.astype(np.float64), np.asfortranarray(bunny), bunny[::2], bunny[:, :2]):
         with pytest.raises(TypeError, match="float32 array of shape"):
             _nmesh.reconstruct(other, *args)
@@ -101,14 +101,15 @@ def test_seed_and_parameters_reach_the_library(bunny: np.ndarray, bunny_mesh: nm
     other = nmesh.reconstruct(bunny, 500, seed=3, metrics=False)
     assert not np.array_equal(other.vertices, bunny_mesh.vertices)
     params = nmesh.reconstruct(bunny, 300, alpha_w=0.05, alpha_n=0.02, alpha=0.9, cvs=80, cec=15, finish=False,
-                               seed=2**64 - 1, index_points_per_vertex=0, threads=2, metrics=False).stats
+                               seed=2**64 - 1, index_points_per_vertex=0, stray_ratio=3.5, threads=2,
+                               metrics=False).stats
     assert params["seed"] == 2**64 - 1
     assert params["parameters"] == {"target_vertices": 300, "alpha_w": 0.05, "alpha_n": 0.02, "alpha": 0.9,
                                     "cvs": 80, "cec": 15, "edge_swap": True, "fold_guard": True, "solid_start": True,
                                     "topology": "closed",
                                     "settle": 0, "finish": False,
                                     "finish_rounds": 10, "fit_rounds": 0, "surface_fit_rounds": 4, "min_hole": 0,
-                                    "adaptivity": 0, "index_points_per_vertex": 0, "threads": 2}
+                                    "stray_ratio": 3.5, "adaptivity": 0, "index_points_per_vertex": 0, "threads": 2}
     assert params["seconds_finish"] == 0
 
 
@@ -143,7 +144,7 @@ def test_every_parameter_is_a_keyword() -> None:
     header = (Path(__file__).resolve().parents[2] / "nmesh" / "parameters.h").read_text()
     body = header[header.index("struct Parameters {"):header.index("void validate() const;")]
     fields = set(re.findall(r"^\s+[\w:]+ (\w+) = ", body, re.M))
-    assert "fold_guard" in fields and "threads" in fields and len(fields) == 20
+    assert "fold_guard" in fields and "threads" in fields and len(fields) == 21
     keywords = set(inspect.signature(nmesh.reconstruct).parameters) - {"points", "progress", "metrics"}
     assert {"vertices" if f == "target_vertices" else f for f in fields} == keywords
 
