@@ -41,6 +41,9 @@ struct Statistics {
     std::uint64_t start_retries = 0;
     // Points left out as stray before the learning (Parameters::stray_ratio).
     std::uint64_t stray_points = 0;
+    // Topology closed and sphere: the parts far apart the cloud is in (nmesh/pipeline/cloud_parts.h),
+    // each with at least 1% of the points; above 1, the closed surface joins them.
+    std::uint32_t cloud_parts = 1;
     std::uint64_t start_vertices = 4;
     // Topology learning (Parameters::topology closed, nmesh/learn/handles.h): searches made,
     // cap-like unsupported patches found over them, handles made, faces cut out for them.

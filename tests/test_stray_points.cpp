@@ -55,14 +55,14 @@ TEST_CASE("the stray points are those the rule finds by brute force") {
         const std::vector<Vec3> p = sphere_with_air(3000, 60, seed);
         for (const float ratio : {2.0f, 6.0f}) {
             CAPTURE(ratio);
-            const std::vector<std::uint32_t> found = stray_points(p, ratio, 1);
+            const std::vector<std::uint32_t> found = stray_points(p, ratio * median_neighbour_distance(p), 1);
             CHECK(found == brute_force(p, ratio));
-            CHECK(found == stray_points(p, ratio, 2));  // the same for any thread count
+            CHECK(found == stray_points(p, ratio * median_neighbour_distance(p), 2));  // the same for any thread count
         }
         // At 6 times the median, the points in the air farthest from the sphere and none of the
         // sphere's (the 8th neighbour of a point in the air lies about as far as 6 times the
         // sphere's: those near the sphere are not far from it).
-        const std::vector<std::uint32_t> found = stray_points(p, 6.0f, 1);
+        const std::vector<std::uint32_t> found = stray_points(p, 6.0f * median_neighbour_distance(p), 1);
         CHECK(std::all_of(found.begin(), found.end(), [](std::uint32_t i) { return i >= 3000; }));
         CHECK(found.size() >= 10);
     }
@@ -70,15 +70,15 @@ TEST_CASE("the stray points are those the rule finds by brute force") {
 
 TEST_CASE("a clean sample has no stray point; the rule can be turned off; a tiny cloud is not read") {
     const std::vector<Vec3> clean = sphere_cloud(20000, 1.0f, {}, 5).points;
-    CHECK(stray_points(clean, 6.0f, 0).empty());
+    CHECK(stray_points(clean, 6.0f * median_neighbour_distance(clean), 0).empty());
     const std::vector<Vec3> p = sphere_with_air(3000, 60, 4);
     CHECK(stray_points(p, 0.0f, 0).empty());
     // Fewer than 8 k points are not read; from 8 k on, a far point is found.
     std::vector<Vec3> tiny(p.begin(), p.begin() + 8 * kStrayNeighbours - 2);
     tiny.push_back({100.0f, 100.0f, 100.0f});
-    CHECK(stray_points(tiny, 6.0f, 0).empty());
+    CHECK(stray_points(tiny, 6.0f * median_neighbour_distance(tiny), 0).empty());
     tiny.push_back({1.0f, 0.0f, 0.0f});
-    CHECK(stray_points(tiny, 6.0f, 0) == std::vector<std::uint32_t>{std::uint32_t(tiny.size() - 2)});
+    CHECK(stray_points(tiny, 6.0f * median_neighbour_distance(tiny), 0) == std::vector<std::uint32_t>{std::uint32_t(tiny.size() - 2)});
 }
 
 TEST_CASE("without_points keeps the others in order") {
@@ -90,7 +90,7 @@ TEST_CASE("without_points keeps the others in order") {
 
 TEST_CASE("the reconstruction leaves the stray points out, as if they had never been there") {
     const std::vector<Vec3> p = sphere_with_air(8000, 200, 6);
-    const std::vector<std::uint32_t> strays = stray_points(p, 6.0f, 0);
+    const std::vector<std::uint32_t> strays = stray_points(p, 6.0f * median_neighbour_distance(p), 0);
     REQUIRE(strays.size() >= 100);
     Parameters params;
     params.target_vertices = 1500;

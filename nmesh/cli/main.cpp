@@ -161,6 +161,11 @@ void print_summary(const Result& r, const std::string& output) {
     else
         std::fprintf(stderr, "nmesh: genus %d, %llu boundary loops (%llu handles learnt)\n", s.genus,
                      (unsigned long long)s.boundary_loops, (unsigned long long)s.handles);
+    if (s.cloud_parts > 1)
+        std::fprintf(stderr,
+                     "nmesh: warning: the cloud is in %u parts far apart, and the closed surface joins them "
+                     "(reconstruct each part from a file of its own for separate surfaces)\n",
+                     s.cloud_parts);
     if (s.stray_points > 0)
         std::fprintf(stderr,
                      "nmesh: left out %llu stray points, far from the others (--stray-ratio 0 keeps them)\n",

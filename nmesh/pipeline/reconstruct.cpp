@@ -18,6 +18,7 @@
 #include "nmesh/learn/neural_mesh.h"
 #include "nmesh/learn/sample_sides.h"
 #include "nmesh/learn/solid_start.h"
+#include "nmesh/pipeline/cloud_parts.h"
 #include "nmesh/pipeline/finishing.h"
 #include "nmesh/pipeline/learning.h"
 #include "nmesh/pipeline/normalization.h"
@@ -138,10 +139,15 @@ Result reconstruct(PointSpan input, const Parameters& params, const Callbacks& c
     require_reconstructible(input);
     // The scan's stray points are left out (stray_points.h); the rest is the cloud from here on,
     // normalised on its own box. Every point stays when none is stray.
-    const std::vector<std::uint32_t> strays = stray_points(input, params.stray_ratio, params.threads);
+    const float neighbour = median_neighbour_distance(input);
+    const std::vector<std::uint32_t> strays = stray_points(input, params.stray_ratio * neighbour, params.threads);
     const std::vector<Vec3> kept = strays.empty() ? std::vector<Vec3>() : without_points(input, strays);
     const PointSpan cloud = strays.empty() ? input : PointSpan(kept);
     const Normalization norm(require_reconstructible(cloud));
+    // A closed surface round a cloud in parts far apart joins them (cloud_parts.h): counted, for
+    // the caller's warning. An open result may hold several pieces.
+    const std::uint32_t parts =
+        params.topology == Topology::open ? 1 : cloud_parts(cloud, kPartLink * neighbour, kPartShare);
     // The fold guard is off for a flat cloud: its closed mesh must fold flat, two coinciding sheets.
     Parameters learning = params;
     learning.fold_guard = params.fold_guard && !is_flat(cloud);
@@ -164,6 +170,7 @@ Result reconstruct(PointSpan input, const Parameters& params, const Callbacks& c
             Result r = learn_from(cloud, params, learning, callbacks, norm, start, solid);
             r.stats.start_retries = stalled;
             r.stats.stray_points = strays.size();
+            r.stats.cloud_parts = parts;
             return r;
         } catch (const Stalled& e) {
             ++stalled;

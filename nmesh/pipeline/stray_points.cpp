@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "nmesh/bounding_box.h"
+#include "nmesh/spatial/sorted_cells.h"
 #include "nmesh/util/parallel.h"
 
 namespace nmesh {
@@ -15,49 +16,6 @@ namespace {
 
 // The median is read from up to this many points (every k-th).
 constexpr std::size_t kMedianSample = 4096;
-
-// The points sorted by the key of their cubic cell: a cell's points are a run of the array, found
-// by binary search. Keys keep 21 bits of each cell coordinate; cells whose coordinates agree in
-// those bits share a run, which costs distance checks, never a wrong answer.
-class SortedCells {
-public:
-    SortedCells(PointSpan points, const Vec3& origin, float cell) : points_(points), origin_(origin), cell_(cell) {
-        entries_.resize(points.size());
-        for (std::size_t i = 0; i < points.size(); ++i) {
-            const auto c = coords(points[i]);
-            entries_[i] = {key(c[0], c[1], c[2]), std::uint32_t(i)};
-        }
-        std::sort(entries_.begin(), entries_.end());
-    }
-
-    std::array<std::int64_t, 3> coords(const Vec3& p) const {
-        return {std::int64_t(std::floor((p.x - origin_.x) / cell_)), std::int64_t(std::floor((p.y - origin_.y) / cell_)),
-                std::int64_t(std::floor((p.z - origin_.z) / cell_))};
-    }
-
-    // f(j) for every point j of cell (x, y, z) (and of the cells sharing its key); stops when f
-    // returns true, and returns whether it did.
-    template <class F>
-    bool for_each_in(std::int64_t x, std::int64_t y, std::int64_t z, F&& f) const {
-        const std::uint64_t k = key(x, y, z);
-        auto it = std::lower_bound(entries_.begin(), entries_.end(), std::make_pair(k, std::uint32_t(0)));
-        for (; it != entries_.end() && it->first == k; ++it)
-            if (f(it->second)) return true;
-        return false;
-    }
-
-    float cell() const { return cell_; }
-
-private:
-    static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
-        return (std::uint64_t(x & 0x1fffff) << 42) | (std::uint64_t(y & 0x1fffff) << 21) | std::uint64_t(z & 0x1fffff);
-    }
-
-    PointSpan points_;
-    Vec3 origin_;
-    float cell_;
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> entries_;
-};
 
 // The squared distance from point i to its k-th nearest other point, when the cells within
 // `rings` of its own hold k points within rings cells of it; infinity otherwise.
@@ -81,31 +39,35 @@ float kth_squared(PointSpan points, const SortedCells& cells, std::uint32_t i, s
 
 }  // namespace
 
-std::vector<std::uint32_t> stray_points(PointSpan cloud, float ratio, std::uint32_t threads) {
+float median_neighbour_distance(PointSpan cloud) {
     const std::size_t n = cloud.size();
-    if (!(ratio > 0.0f) || n < 8 * kStrayNeighbours) return {};
+    if (n < 8 * kStrayNeighbours) return 0.0f;
     BoundingBox box;
     for (const Vec3& p : cloud) box.extend(p);
-    // The median from cells of about twice the spacing of a surface sample as large as the box:
-    // the k-th neighbour of most points within one ring, of nearly all within two.
-    const float first_cell = float(2.0 * box.diagonal() / std::sqrt(double(n)));
-    if (!(first_cell > 0.0f) || !std::isfinite(first_cell)) return {};
+    // Cells of about twice the spacing of a surface sample as large as the box: the k-th
+    // neighbour of most points within one ring, of nearly all within two.
+    const float cell = float(2.0 * box.diagonal() / std::sqrt(double(n)));
+    if (!(cell > 0.0f) || !std::isfinite(cell)) return 0.0f;
     const std::size_t stride = std::max<std::size_t>(1, n / kMedianSample);
     std::vector<float> kth;
-    {
-        const SortedCells cells(cloud, box.min, first_cell);
-        std::vector<float> d2;
-        for (std::size_t i = 0; i < n; i += stride) {
-            float k2 = kth_squared(cloud, cells, std::uint32_t(i), kStrayNeighbours, 1, d2);
-            if (!std::isfinite(k2)) k2 = kth_squared(cloud, cells, std::uint32_t(i), kStrayNeighbours, 2, d2);
-            kth.push_back(k2);
-        }
+    const SortedCells cells(cloud, box.min, cell);
+    std::vector<float> d2;
+    for (std::size_t i = 0; i < n; i += stride) {
+        float k2 = kth_squared(cloud, cells, std::uint32_t(i), kStrayNeighbours, 1, d2);
+        if (!std::isfinite(k2)) k2 = kth_squared(cloud, cells, std::uint32_t(i), kStrayNeighbours, 2, d2);
+        kth.push_back(k2);
     }
     std::nth_element(kth.begin(), kth.begin() + std::ptrdiff_t(kth.size() / 2), kth.end());
     const float median = std::sqrt(kth[kth.size() / 2]);
     // A median of 0 (most points repeated 8 times over) or of nothing found tells nothing.
-    if (!(median > 0.0f) || !std::isfinite(median)) return {};
-    const float reach = ratio * median;
+    return median > 0.0f && std::isfinite(median) ? median : 0.0f;
+}
+
+std::vector<std::uint32_t> stray_points(PointSpan cloud, float reach, std::uint32_t threads) {
+    const std::size_t n = cloud.size();
+    if (!(reach > 0.0f) || !std::isfinite(reach) || n < 8 * kStrayNeighbours) return {};
+    BoundingBox box;
+    for (const Vec3& p : cloud) box.extend(p);
     // Cells as wide as the reach: the k points within it of a point that is not stray lie in its
     // cell and the 26 round it, most of them in its own, which is searched first.
     const SortedCells cells(cloud, box.min, reach);

@@ -23,10 +23,16 @@ namespace nmesh {
 
 inline constexpr std::uint32_t kStrayNeighbours = 8;
 
-// The indices of the stray points of `cloud`, ascending; none when `ratio` is 0 or the cloud has
-// fewer than 8 kStrayNeighbours points (too few to tell). `threads` share the points (0: the
-// machine's cores): the same answer for every count. O(n k) for n points.
-std::vector<std::uint32_t> stray_points(PointSpan cloud, float ratio, std::uint32_t threads);
+// The median over the cloud of the distance from a point to its kStrayNeighbours-th nearest
+// neighbour, read from up to 4,096 points (every k-th); 0 when the cloud has fewer than 8
+// kStrayNeighbours points (too few to tell) or the median is 0 (points repeated). O(n log n).
+float median_neighbour_distance(PointSpan cloud);
+
+// The indices of the points of `cloud` that have fewer than kStrayNeighbours others within
+// `reach` (the stray points at ratio R: reach = R * median_neighbour_distance), ascending; none
+// when `reach` is 0 or the cloud has fewer than 8 kStrayNeighbours points. `threads` share the
+// points (0: the machine's cores): the same answer for every count. O(n log n).
+std::vector<std::uint32_t> stray_points(PointSpan cloud, float reach, std::uint32_t threads);
 
 // `cloud` without the points at `strays` (ascending indices), in order.
 std::vector<Vec3> without_points(PointSpan cloud, const std::vector<std::uint32_t>& strays);
