@@ -76,9 +76,12 @@ TEST_CASE("a clean sample has no stray point; the rule can be turned off; a tiny
     // Fewer than 8 k points are not read; from 8 k on, a far point is found.
     std::vector<Vec3> tiny(p.begin(), p.begin() + 8 * kStrayNeighbours - 2);
     tiny.push_back({100.0f, 100.0f, 100.0f});
+    CHECK(median_neighbour_distance(tiny) == 0.0f);
     CHECK(stray_points(tiny, 6.0f * median_neighbour_distance(tiny), 0).empty());
     tiny.push_back({1.0f, 0.0f, 0.0f});
-    CHECK(stray_points(tiny, 6.0f * median_neighbour_distance(tiny), 0) == std::vector<std::uint32_t>{std::uint32_t(tiny.size() - 2)});
+    CHECK(median_neighbour_distance(tiny) > 0.0f);
+    CHECK(stray_points(tiny, 6.0f * median_neighbour_distance(tiny), 0) ==
+          std::vector<std::uint32_t>{std::uint32_t(tiny.size() - 2)});
 }
 
 TEST_CASE("without_points keeps the others in order") {

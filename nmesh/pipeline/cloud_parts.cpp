@@ -53,7 +53,8 @@ std::uint32_t cloud_parts(PointSpan cloud, float link, double min_share) {
     std::vector<std::uint64_t> points(keys.size(), 0);
     for (std::uint32_t c = 0; c < keys.size(); ++c) points[root(parent, c)] += count[c];
     const double least = min_share * double(cloud.size());
-    return std::uint32_t(std::count_if(points.begin(), points.end(), [&](std::uint64_t n) { return n > 0 && double(n) >= least; }));
+    return std::uint32_t(
+        std::count_if(points.begin(), points.end(), [&](std::uint64_t n) { return n > 0 && double(n) >= least; }));
 }
 
 }  // namespace nmesh

@@ -1,9 +1,10 @@
 // reconstruct(): the pipeline's stages in their order. The cloud is checked, its stray points
 // left out (stray_points.h) and the rest normalised (normalization.h); the learning starts from
 // the solid the cloud walls round or from the tetrahedron (nmesh/learn/solid_start.h); it learns
-// to the target size with its checkpoints (learning.h); the learnt mesh is finished (finishing.h), or, with topology open, finished and
-// cut open where the cloud has no data (opening.h); the output is turned outward and checked
-// (output_check.h), and an output that is not valid is learnt again from the last checkpoint.
+// to the target size with its checkpoints (learning.h); the learnt mesh is finished
+// (finishing.h), or, with topology open, finished and cut open where the cloud has no data
+// (opening.h); the output is turned outward and checked (output_check.h), and an output that is
+// not valid is learnt again from the last checkpoint.
 #include "nmesh/reconstruct.h"
 
 #include <algorithm>

@@ -85,7 +85,8 @@ std::vector<std::uint32_t> stray_points(PointSpan cloud, float reach, std::uint3
             for (int dx = -1; dx <= 1 && !enough; ++dx)
                 for (int dy = -1; dy <= 1 && !enough; ++dy)
                     for (int dz = -1; dz <= 1 && !enough; ++dz)
-                        if (dx != 0 || dy != 0 || dz != 0) enough = cells.for_each_in(c[0] + dx, c[1] + dy, c[2] + dz, count);
+                        if (dx != 0 || dy != 0 || dz != 0)
+                            enough = cells.for_each_in(c[0] + dx, c[1] + dy, c[2] + dz, count);
             stray[i] = !enough;
         }
     });

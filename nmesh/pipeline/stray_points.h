@@ -8,10 +8,11 @@
 // after three output retries; without the 400, valid at once (docs/algorithm.md, "Stray points").
 //
 // The rule: a point is stray when its kStrayNeighbours-th nearest neighbour lies farther than
-// `ratio` times the median of that distance over the cloud. On a surface sampled at random, that
-// distance varies little (at most 1.7-2.0 times its median on the corpus's sampled clouds); in the
-// sparse parts of a real scan up to 4.1 (the horse's, the rocker arm's 4.0); a point in the air,
-// or a clump of fewer than kStrayNeighbours, lies many times farther from its neighbours.
+// R = Parameters::stray_ratio times the median of that distance over the cloud. On a surface
+// sampled at random, that distance varies little (at most 1.7-2.5 times its median on the
+// corpus's sampled clouds); in the sparse parts of a real scan up to 4.1 (the horse's, the rocker
+// arm's 4.0); a point in the air, or a clump of fewer than kStrayNeighbours, lies many times
+// farther from its neighbours.
 #pragma once
 
 #include <cstdint>

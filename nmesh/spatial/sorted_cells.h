@@ -29,7 +29,8 @@ public:
     }
 
     std::array<std::int64_t, 3> coords(const Vec3& p) const {
-        return {std::int64_t(std::floor((p.x - origin_.x) / cell_)), std::int64_t(std::floor((p.y - origin_.y) / cell_)),
+        return {std::int64_t(std::floor((p.x - origin_.x) / cell_)),
+                std::int64_t(std::floor((p.y - origin_.y) / cell_)),
                 std::int64_t(std::floor((p.z - origin_.z) / cell_))};
     }
 
