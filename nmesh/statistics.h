@@ -42,8 +42,11 @@ struct Statistics {
     // Points left out as stray before the learning (Parameters::stray_ratio).
     std::uint64_t stray_points = 0;
     // Topology closed and sphere: the parts far apart the cloud is in (nmesh/pipeline/cloud_parts.h),
-    // each with at least 1% of the points; above 1, the closed surface joins them.
+    // each with at least 1% of the points; and whether each got a surface of its own
+    // (nmesh/pipeline/parts.h: the counts above and below are then the parts' sums). Above 1
+    // part without that, the one closed surface joins them.
     std::uint32_t cloud_parts = 1;
+    bool parts_apart = false;
     std::uint64_t start_vertices = 4;
     // Topology learning (Parameters::topology closed, nmesh/learn/handles.h): searches made,
     // cap-like unsupported patches found over them, handles made, faces cut out for them.

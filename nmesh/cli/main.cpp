@@ -151,7 +151,12 @@ void print_summary(const Result& r, const std::string& output) {
                  (unsigned long long)s.splits, (unsigned long long)s.collapses, (unsigned long long)s.collapses_refused,
                  (unsigned long long)s.swaps_kept, (unsigned long long)s.swaps_tried, s.seconds,
                  s.seconds > 0 ? s.iterations / s.seconds / 1e6 : 0.0, finishing.c_str());
-    if (s.start_core)
+    if (s.parts_apart)
+        std::fprintf(stderr,
+                     "nmesh: genus %d, %llu boundary loops, in %u closed surfaces (the cloud's parts far "
+                     "apart, a surface each; %llu handles learnt)\n",
+                     s.genus, (unsigned long long)s.boundary_loops, s.cloud_parts, (unsigned long long)s.handles);
+    else if (s.start_core)
         std::fprintf(stderr, "nmesh: genus %d, %llu boundary loops (learnt from the genus-0 core of the cloud's solid, "
                      "whose genus did not hold; %llu handles learnt)\n",
                      s.genus, (unsigned long long)s.boundary_loops, (unsigned long long)s.handles);
@@ -161,11 +166,11 @@ void print_summary(const Result& r, const std::string& output) {
     else
         std::fprintf(stderr, "nmesh: genus %d, %llu boundary loops (%llu handles learnt)\n", s.genus,
                      (unsigned long long)s.boundary_loops, (unsigned long long)s.handles);
-    if (s.cloud_parts > 1)
+    if (s.cloud_parts > 1 && !s.parts_apart)
         std::fprintf(stderr,
-                     "nmesh: warning: the cloud is in %u parts far apart, and the closed surface joins them "
-                     "(reconstruct each part from a file of its own for separate surfaces)\n",
-                     s.cloud_parts);
+                     "nmesh: warning: the cloud is in %u parts far apart, too many for %zu vertices to give "
+                     "each its own surface: the closed surface joins them\n",
+                     s.cloud_parts, r.mesh.positions.size());
     if (s.stray_points > 0)
         std::fprintf(stderr,
                      "nmesh: left out %llu stray points, far from the others (--stray-ratio 0 keeps them)\n",

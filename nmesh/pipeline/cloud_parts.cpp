@@ -18,8 +18,17 @@ std::uint32_t root(std::vector<std::uint32_t>& parent, std::uint32_t a) {
 
 }  // namespace
 
-std::uint32_t cloud_parts(PointSpan cloud, float link, double min_share) {
-    if (cloud.empty() || !(link > 0.0f)) return cloud.empty() ? 0 : 1;
+CloudParts cloud_parts(PointSpan cloud, float link, double min_share) {
+    CloudParts out;
+    if (cloud.empty()) {
+        out.count = 0;
+        return out;
+    }
+    if (!(link > 0.0f)) {
+        out.part.assign(cloud.size(), 0);
+        out.size = {cloud.size()};
+        return out;
+    }
     BoundingBox box;
     for (const Vec3& p : cloud) box.extend(p);
     const SortedCells cells(cloud, box.min, link);
@@ -52,9 +61,25 @@ std::uint32_t cloud_parts(PointSpan cloud, float link, double min_share) {
     }
     std::vector<std::uint64_t> points(keys.size(), 0);
     for (std::uint32_t c = 0; c < keys.size(); ++c) points[root(parent, c)] += count[c];
+    // The parts large enough, by size; a root is the smallest cell of its part, so ties go by it.
     const double least = min_share * double(cloud.size());
-    return std::uint32_t(
-        std::count_if(points.begin(), points.end(), [&](std::uint64_t n) { return n > 0 && double(n) >= least; }));
+    std::vector<std::uint32_t> roots;
+    for (std::uint32_t c = 0; c < keys.size(); ++c)
+        if (points[c] > 0 && double(points[c]) >= least) roots.push_back(c);
+    std::stable_sort(roots.begin(), roots.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return points[a] > points[b]; });
+    std::vector<std::uint32_t> number(keys.size(), kNoPart);
+    for (std::uint32_t i = 0; i < roots.size(); ++i) {
+        number[roots[i]] = i;
+        out.size.push_back(points[roots[i]]);
+    }
+    out.count = std::uint32_t(roots.size());
+    out.part.assign(cloud.size(), kNoPart);
+    for (std::size_t e = 0, c = 0; e < entries.size(); ++e) {
+        if (e > 0 && entries[e].first != entries[e - 1].first) ++c;
+        out.part[entries[e].second] = number[root(parent, std::uint32_t(c))];
+    }
+    return out;
 }
 
 }  // namespace nmesh

@@ -24,6 +24,7 @@
 #include "nmesh/pipeline/learning.h"
 #include "nmesh/pipeline/normalization.h"
 #include "nmesh/pipeline/opening.h"
+#include "nmesh/pipeline/parts.h"
 #include "nmesh/pipeline/output_check.h"
 #include "nmesh/pipeline/reporter.h"
 #include "nmesh/pipeline/stray_points.h"
@@ -132,23 +133,11 @@ Result learn_from(PointSpan cloud, const Parameters& params, const Parameters& l
     return result;
 }
 
-}  // namespace
-
-Result reconstruct(PointSpan input, const Parameters& params, const Callbacks& callbacks) {
-    params.validate();
-    const auto start = Clock::now();
-    require_reconstructible(input);
-    // The scan's stray points are left out (stray_points.h); the rest is the cloud from here on,
-    // normalised on its own box. Every point stays when none is stray.
-    const float neighbour = median_neighbour_distance(input);
-    const std::vector<std::uint32_t> strays = stray_points(input, params.stray_ratio * neighbour, params.threads);
-    const std::vector<Vec3> kept = strays.empty() ? std::vector<Vec3>() : without_points(input, strays);
-    const PointSpan cloud = strays.empty() ? input : PointSpan(kept);
+// One cloud (the whole, or a part of it far from the others: parts.h), from its normalisation
+// on.
+Result reconstruct_cloud(PointSpan cloud, const Parameters& params, const Callbacks& callbacks,
+                         Clock::time_point start) {
     const Normalization norm(require_reconstructible(cloud));
-    // A closed surface round a cloud in parts far apart joins them (cloud_parts.h): counted, for
-    // the caller's warning. An open result may hold several pieces.
-    const std::uint32_t parts =
-        params.topology == Topology::open ? 1 : cloud_parts(cloud, kPartLink * neighbour, kPartShare);
     // The fold guard is off for a flat cloud: its closed mesh must fold flat, two coinciding sheets.
     Parameters learning = params;
     learning.fold_guard = params.fold_guard && !is_flat(cloud);
@@ -170,8 +159,6 @@ Result reconstruct(PointSpan input, const Parameters& params, const Callbacks& c
         try {
             Result r = learn_from(cloud, params, learning, callbacks, norm, start, solid);
             r.stats.start_retries = stalled;
-            r.stats.stray_points = strays.size();
-            r.stats.cloud_parts = parts;
             return r;
         } catch (const Stalled& e) {
             ++stalled;
@@ -187,6 +174,46 @@ Result reconstruct(PointSpan input, const Parameters& params, const Callbacks& c
             }
         }
     }
+}
+
+}  // namespace
+
+Result reconstruct(PointSpan input, const Parameters& params, const Callbacks& callbacks) {
+    params.validate();
+    const auto start = Clock::now();
+    require_reconstructible(input);
+    // The scan's stray points are left out (stray_points.h); the rest is the cloud from here on.
+    // Every point stays when none is stray.
+    const float neighbour = median_neighbour_distance(input);
+    const std::vector<std::uint32_t> strays = stray_points(input, params.stray_ratio * neighbour, params.threads);
+    const std::vector<Vec3> kept = strays.empty() ? std::vector<Vec3>() : without_points(input, strays);
+    const PointSpan cloud = strays.empty() ? input : PointSpan(kept);
+    require_reconstructible(cloud);
+    // A closed surface round a cloud in parts far apart would join them (cloud_parts.h): each
+    // part gets a surface of its own when the vertices asked for go round (parts.h), otherwise
+    // the caller is warned. An open result may hold several pieces: read whole.
+    const CloudParts parts = params.topology == Topology::open
+                                 ? CloudParts()
+                                 : cloud_parts(cloud, kPartLink * neighbour, kPartShare);
+    const std::vector<std::uint32_t> budgets =
+        parts.count > 1 ? part_budgets(parts, params.target_vertices) : std::vector<std::uint32_t>();
+    Result r;
+    if (budgets.empty()) {
+        r = reconstruct_cloud(cloud, params, callbacks, start);
+    } else {
+        // Each part's times from its own start (its progress reports add the parts' before).
+        const auto one = [](PointSpan part, const Parameters& p, const Callbacks& c) {
+            return reconstruct_cloud(part, p, c, Clock::now());
+        };
+        r = reconstruct_parts(cloud, parts, budgets, params, callbacks, one);
+        check_output(r, params.threads);
+        r.stats.parts_apart = true;
+        // The points of the parts too small to count are left out with the strays.
+        for (const std::uint32_t part : parts.part) r.stats.stray_points += std::uint64_t(part == kNoPart);
+    }
+    r.stats.stray_points += strays.size();
+    r.stats.cloud_parts = parts.count;
+    return r;
 }
 
 }  // namespace nmesh

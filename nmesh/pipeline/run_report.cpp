@@ -88,6 +88,7 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << "  \"start_retries\": " << s.start_retries << ",\n"
       << "  \"stray_points\": " << s.stray_points << ",\n"
       << "  \"cloud_parts\": " << s.cloud_parts << ",\n"
+      << "  \"parts_apart\": " << (s.parts_apart ? "true" : "false") << ",\n"
       << "  \"start_vertices\": " << s.start_vertices << ",\n"
       << "  \"start_core\": " << (s.start_core ? "true" : "false") << ",\n"
       << "  \"topology_checks\": " << s.topology_checks << ",\n"
