@@ -11,7 +11,8 @@ namespace nmesh {
 
 // What topology the learning may give the surface (Parameters::topology).
 enum class Topology {
-    sphere,  // the paper's algorithm: the tetrahedron's genus 0, bit for bit as it always was
+    sphere,  // the paper's algorithm: the tetrahedron's genus 0, bit for bit as it always was (with
+             // stray_ratio 0 on a cloud with stray points; a cloud in parts gets a surface each)
     closed,  // the cloud's genus: its solid's (nmesh/learn/solid_start.h), or handles learnt from the
              // data as the mesh grows (nmesh/learn/handles.h); a closed surface of that genus
     open,    // as closed, then opened where the cloud has no data (nmesh/finish/open_surface.h)
@@ -32,8 +33,8 @@ struct Parameters {
     // Choice beyond the paper: step 3 may not fold the winner's triangles back against its fan,
     // and a winner found folded moves to its ring's centroid instead (NeuralMesh::guard_fold).
     // Without it, folds of the coarse early mesh grow into inside-out parts. Off by itself for a
-    // flat cloud, whose closed mesh must fold flat. false, with finish false and topology sphere,
-    // gives the paper's plain algorithm, bit for bit.
+    // flat cloud, whose closed mesh must fold flat. false, with finish false, topology sphere and
+    // stray_ratio 0, gives the paper's plain algorithm, bit for bit.
     bool fold_guard = true;
     // Beyond the paper: whether the learning opens handles where the data has through-holes
     // (closed, the default; docs/algorithm.md, "Topology") and leaves the scan's holes open
