@@ -13,6 +13,7 @@
 #include "nmesh/bounding_box.h"
 #include "nmesh/learn/cloud_splats.h"
 #include "nmesh/learn/solid_core.h"
+#include "nmesh/spatial/sorted_cells.h"
 #include "nmesh/util/parallel.h"
 
 namespace nmesh {
@@ -74,37 +75,28 @@ namespace {
 using solid_detail::outside_levels;
 
 // The median distance from a point to its nearest other point, over up to 4096 of them (every
-// k-th), found in a hash of cells sorted by key. 0 when no sampled point has a distinct neighbour
-// within its cell's 27.
+// k-th), found among the points of its cell and the 26 round it. 0 when no sampled point has a
+// distinct neighbour there.
 float median_spacing(const std::vector<Vec3>& p, const BoundingBox& box) {
     const std::size_t n = p.size();
     if (n < 2) return 0.0f;
     // Cells of about twice the spacing of a surface sample as large as the box allows.
     const float cell = float(2.0 * box.diagonal() / std::sqrt(double(n)));
     if (!(cell > 0.0f)) return 0.0f;
-    auto coord = [&](float x, float lo) { return std::int64_t(std::floor((x - lo) / cell)); };
-    auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
-        return (std::uint64_t(x & 0x1fffff) << 42) | (std::uint64_t(y & 0x1fffff) << 21) | std::uint64_t(z & 0x1fffff);
-    };
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> cells(n);
-    for (std::size_t i = 0; i < n; ++i)
-        cells[i] = {key(coord(p[i].x, box.min.x), coord(p[i].y, box.min.y), coord(p[i].z, box.min.z)), std::uint32_t(i)};
-    std::sort(cells.begin(), cells.end());
+    const SortedCells cells(p, box.min, cell);
     const std::size_t stride = std::max<std::size_t>(1, n / 4096);
     std::vector<float> nearest;
     for (std::size_t i = 0; i < n; i += stride) {
-        const std::int64_t cx = coord(p[i].x, box.min.x), cy = coord(p[i].y, box.min.y), cz = coord(p[i].z, box.min.z);
+        const auto c = cells.coords(p[i]);
         float best = std::numeric_limits<float>::max();
         for (int dx = -1; dx <= 1; ++dx)
             for (int dy = -1; dy <= 1; ++dy)
-                for (int dz = -1; dz <= 1; ++dz) {
-                    const std::uint64_t k = key(cx + dx, cy + dy, cz + dz);
-                    auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(k, std::uint32_t(0)));
-                    for (; it != cells.end() && it->first == k; ++it) {
-                        const float d2 = squared_distance(p[i], p[it->second]);
+                for (int dz = -1; dz <= 1; ++dz)
+                    cells.for_each_in(c[0] + dx, c[1] + dy, c[2] + dz, [&](std::uint32_t j) {
+                        const float d2 = squared_distance(p[i], p[j]);
                         if (d2 > 0.0f) best = std::min(best, d2);
-                    }
-                }
+                        return false;
+                    });
         if (best < std::numeric_limits<float>::max()) nearest.push_back(std::sqrt(best));
     }
     if (nearest.empty()) return 0.0f;

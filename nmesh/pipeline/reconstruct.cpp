@@ -188,7 +188,6 @@ Result reconstruct(PointSpan input, const Parameters& params, const Callbacks& c
     const std::vector<std::uint32_t> strays = stray_points(input, params.stray_ratio * neighbour, params.threads);
     const std::vector<Vec3> kept = strays.empty() ? std::vector<Vec3>() : without_points(input, strays);
     const PointSpan cloud = strays.empty() ? input : PointSpan(kept);
-    require_reconstructible(cloud);
     // A closed surface round a cloud in parts far apart would join them (cloud_parts.h): each
     // part gets a surface of its own when the vertices asked for go round (parts.h), otherwise
     // the caller is warned. An open result may hold several pieces: read whole.

@@ -1,5 +1,6 @@
 // nmesh/spatial/sorted_cells.h — the points of a cloud sorted by the cubic cell they lie in: the
-// cloud's points near a place, without a hash map (the stray points, the cloud's parts).
+// cloud's points near a place, without a hash map (the solid's spacing, the stray points, the
+// cloud's parts).
 #pragma once
 
 #include <algorithm>
