@@ -87,6 +87,12 @@ struct Parameters {
     // (a least-squares fit), keeping every guarantee of the stage. 0 leaves the stage as it was
     // before the fit. Ignored without the finishing stage.
     std::uint32_t surface_fit_rounds = 4;
+    // Passes of the finishing stage's vertex exchange, in [0, 100] (nmesh/finish/exchange.h): edge
+    // collapses where the surface is flat paired with splits where it bends away from the mesh,
+    // at most 2% of the vertices each, the count kept. 0 leaves the vertices where the learning's
+    // sample density put them (the paper's behaviour); more passes move more of them to where the
+    // shape needs them. Ignored without the finishing stage.
+    std::uint32_t exchange_passes = 10;
     // The nearest-point index behind eq. (9) (the edge swap's deviation) and the finishing stage
     // holds at most this many cloud points per target vertex: the whole cloud up to that size,
     // else a stratified sample of it, so that its cost follows the mesh rather than the cloud.

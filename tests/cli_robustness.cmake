@@ -325,7 +325,8 @@ foreach(bad
     "--finish-rounds;-1;--finish-rounds needs a whole number" "--fit-rounds;101;invalid parameter fit_rounds"
     "--fit-rounds;-1;--fit-rounds needs a whole number"
     "--surface-fit-rounds;101;invalid parameter surface_fit_rounds"
-    "--surface-fit-rounds;-1;--surface-fit-rounds needs a whole number")
+    "--surface-fit-rounds;-1;--surface-fit-rounds needs a whole number"
+    "--exchange-passes;101;invalid parameter exchange_passes")
   list(GET bad 0 option)
   list(GET bad 1 value)
   list(GET bad 2 regex)

@@ -564,6 +564,7 @@ TEST_CASE("invalid parameters are refused, naming the parameter") {
     refuses([](Parameters& p) { p.finish_rounds = 1001; }, "finish_rounds");
     refuses([](Parameters& p) { p.fit_rounds = 101; }, "fit_rounds");
     refuses([](Parameters& p) { p.surface_fit_rounds = 101; }, "surface_fit_rounds");
+    refuses([](Parameters& p) { p.exchange_passes = 101; }, "exchange_passes");
     refuses(
         [](Parameters& p) {
             p.fit_rounds = 1;

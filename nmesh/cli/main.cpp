@@ -77,6 +77,8 @@ constexpr const char* kReconstructUsage =
     "                         lowers DM(X,T) at those points, not the distance to the surface\n"
     "  --surface-fit-rounds N fit the vertices to the cloud's points by least squares, N rounds\n"
     "                         (default 4; 0: off)\n"
+    "  --exchange-passes N    move vertices from flat parts to where the surface bends, N passes\n"
+    "                         of at most 2% of them each (default 10; 0: where the learning put them)\n"
     "  --index-points K       index at most K cloud points per vertex for the edge swap and the\n"
     "                         finishing stage (default 64; 0: every point)\n"
     "  --settle X             X * n iterations without topology changes at the end (default 0)\n"
@@ -203,7 +205,8 @@ int run_reconstruct(int argc, char** argv) {
         argc, argv, 2,
         {"--no-edge-swap", "--no-fold-guard", "--no-solid-start", "--no-finish", "--quiet", "--ascii", "--save-on-interrupt"},
         {"-o", "--output", "--vertices", "--alpha-w", "--alpha-n", "--alpha", "--cvs", "--cec", "--seed", "--snapshots",
-         "--stats", "--settle", "--finish-rounds", "--fit-rounds", "--surface-fit-rounds", "--index-points",
+         "--stats", "--settle", "--finish-rounds", "--fit-rounds", "--surface-fit-rounds", "--exchange-passes",
+         "--index-points",
          "--topology", "--min-hole", "--stray-ratio", "--adaptivity", "--threads"});
     if (args.positional().size() != 1) throw UsageError("reconstruct takes one INPUT file");
     const std::string input = args.positional()[0];
@@ -250,6 +253,7 @@ int run_reconstruct(int argc, char** argv) {
     p.finish_rounds = bounded_count("--finish-rounds", p.finish_rounds);
     p.fit_rounds = bounded_count("--fit-rounds", p.fit_rounds);
     p.surface_fit_rounds = bounded_count("--surface-fit-rounds", p.surface_fit_rounds);
+    p.exchange_passes = bounded_count("--exchange-passes", p.exchange_passes);
     p.index_points_per_vertex = bounded_count("--index-points", p.index_points_per_vertex);
     p.threads = bounded_count("--threads", p.threads);
     try {

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "nmesh/finish/cover.h"
+#include "nmesh/finish/exchange.h"
 #include "nmesh/finish/mesh_queries.h"
 #include "nmesh/geometry/flatness.h"
 
@@ -88,6 +89,20 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
         relax_tangentially(mesh, pull, pull ? &anchors : nullptr, options.threads);
         ++report.relax_passes;
         step(1);
+    }
+    // Step 2, the vertices exchanged towards where the shape bends (exchange.h), measured on the
+    // mesh fitted to the points (the learnt vertices sit inside a bend; fitted, what is left of a
+    // face's offset from its points is its chord).
+    if (pull && options.exchange_passes > 0 && !regularisation_over()) {
+        if (options.surface_fit_rounds > 0) {
+            SurfaceFitOptions fit;
+            fit.rounds = options.surface_fit_rounds;
+            fit.fold_dihedral_deg = options.fold_dihedral_deg;
+            fit.threads = options.threads;
+            fit_surface(mesh, *pull, fit);
+        }
+        report.exchanged =
+            exchange_vertices(mesh, *pull, options.exchange_passes, options.flip_max_dihedral_deg).exchanged;
     }
     for (int r = 0; r < options.fit_rounds; ++r) {
         fit_centroids(mesh, cloud, options.fit_weight);

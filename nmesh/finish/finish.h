@@ -14,6 +14,8 @@
 //      towards a point facing the same way; a vertex that would end more than an edge from the
 //      cloud, farther than it was, stays where it is; so does a vertex whose move would leave the
 //      place the learning left it on the scan uncovered: a tip, a sharp ridge, relax_tangentially);
+//      then the vertex exchange: collapses where the surface is flat paired with splits where it
+//      bends away from the mesh, measured on the mesh fitted to the points (exchange.h);
 //   2. repair of folds and self-intersections: local smoothing, collapses of very short and splits
 //      of very long edges around each defect until none is left, then the smoothed vertices are
 //      pulled back towards the cloud wherever that creates no new defect. The repair is all or
@@ -102,6 +104,10 @@ struct FinishOptions {
     // vertices to where the triangles best match the scan points (a least-squares fit); only with
     // `project`. 0 skips it.
     int surface_fit_rounds = 4;
+    // Vertex exchange (after the regularisation, only with `project`): passes of exchange_vertices
+    // (nmesh/finish/exchange.h) on the mesh first fitted to the points (surface_fit_rounds rounds of
+    // the fit). 0 skips it.
+    int exchange_passes = 10;
     // Threads (0: the machine's cores) for the work that is independent vertex by vertex or point
     // by point: the relaxation's new positions and the surface fit's nearest triangles. The
     // results are combined in the same order for any count: the same mesh, bit for bit.
@@ -124,6 +130,7 @@ struct FinishReport {
     bool repair_reverted = false;  // the repair did not succeed and was undone
     bool repair_declined = false;  // not tried: too many defects for a repair (kRepairMaxDefectShare)
     std::uint32_t cover_moves = 0;  // vertex moves of step 3 kept
+    std::uint64_t exchanged = 0;    // collapse-split pairs of the vertex exchange
     SurfaceFitResult surface_fit;   // the last step
     // When the repair of the regularised mesh fails and that mesh has more intersecting pairs than
     // the learnt one, the stage falls back on the learnt mesh, repaired if possible.

@@ -39,6 +39,7 @@ void Parameters::validate() const {
     if (fit_rounds > 100) bad("fit_rounds", "must be in [0, 100], got " + std::to_string(fit_rounds));
     if (surface_fit_rounds > 100)
         bad("surface_fit_rounds", "must be in [0, 100], got " + std::to_string(surface_fit_rounds));
+    if (exchange_passes > 100) bad("exchange_passes", "must be in [0, 100], got " + std::to_string(exchange_passes));
     if (topology != Topology::sphere && topology != Topology::closed && topology != Topology::open)
         bad("topology", "must be Topology::sphere, closed or open");
     if (fit_rounds > 0 && !finish) bad("fit_rounds", "needs the finishing stage (finish), which is off");

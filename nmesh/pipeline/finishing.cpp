@@ -12,6 +12,8 @@ static_assert(FinishOptions{}.rounds == int(Parameters{}.finish_rounds), "two de
 static_assert(FinishOptions{}.fit_rounds == int(Parameters{}.fit_rounds), "two defaults for the centroid fit");
 static_assert(FinishOptions{}.surface_fit_rounds == int(Parameters{}.surface_fit_rounds),
               "two defaults for the surface fit");
+static_assert(FinishOptions{}.exchange_passes == int(Parameters{}.exchange_passes),
+              "two defaults for the vertex exchange");
 
 const PointGrid& cloud_index_of(std::shared_ptr<PointGrid>& cloud_index, PointSpan cloud, const Normalization& norm,
                                 const Parameters& params, Statistics& stats) {
@@ -32,6 +34,7 @@ bool finish_stage(const Mesh& learnt, std::shared_ptr<PointGrid>& cloud_index, P
     options.rounds = int(params.finish_rounds);
     options.fit_rounds = int(params.fit_rounds);
     options.surface_fit_rounds = int(params.surface_fit_rounds);
+    options.exchange_passes = int(params.exchange_passes);
     options.threads = params.threads;
     if (!repair) options.repair_max_rounds = 0;
     options.off_cloud_last_resort = last_resort;

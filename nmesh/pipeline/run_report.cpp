@@ -61,7 +61,8 @@ void write_run_json(std::ostream& o, const std::string& input, const Parameters&
       << ", \"solid_start\": " << (p.solid_start ? "true" : "false") << ", \"topology\": \"" << topology_name(p.topology)
       << "\", \"settle\": " << p.settle << ", \"finish\": " << (p.finish ? "true" : "false")
       << ", \"finish_rounds\": " << p.finish_rounds << ", \"fit_rounds\": " << p.fit_rounds
-      << ", \"surface_fit_rounds\": " << p.surface_fit_rounds << ", \"min_hole\": " << p.min_hole
+      << ", \"surface_fit_rounds\": " << p.surface_fit_rounds << ", \"exchange_passes\": " << p.exchange_passes
+      << ", \"min_hole\": " << p.min_hole
       << ", \"stray_ratio\": " << p.stray_ratio
       << ", \"adaptivity\": " << p.adaptivity
       << ", \"index_points_per_vertex\": " << p.index_points_per_vertex

@@ -197,6 +197,7 @@ def reconstruct(
     finish_rounds: int = 10,
     fit_rounds: int = 0,
     surface_fit_rounds: int = 4,
+    exchange_passes: int = 10,
     settle: float = 0.0,
     index_points_per_vertex: int = 64,
     threads: int = 0,
@@ -243,6 +244,9 @@ def reconstruct(
     finish_rounds, fit_rounds: the finishing stage's regularisation and centroid-fit rounds.
     surface_fit_rounds: the finishing stage's surface fit (the vertices moved to where the mesh
         best matches the points, least squares), in rounds; 0 turns it off.
+    exchange_passes: the finishing stage's vertex exchange (vertices moved from flat parts to
+        where the surface bends, at most 2% of them per pass); 0 keeps them where the learning's
+        sample density put them.
     settle: settle * n iterations without topology changes once the target size is reached.
     index_points_per_vertex: cloud points indexed per target vertex (0: all of them).
     threads: threads for the work beside the learning (the solid's reading, the finishing stage's
@@ -291,6 +295,7 @@ def reconstruct(
         finish_rounds=_count("finish_rounds", finish_rounds),
         fit_rounds=_count("fit_rounds", fit_rounds),
         surface_fit_rounds=_count("surface_fit_rounds", surface_fit_rounds),
+        exchange_passes=_count("exchange_passes", exchange_passes),
         index_points_per_vertex=_count("index_points_per_vertex", index_points_per_vertex),
         threads=_count("threads", threads),
         progress=progress,

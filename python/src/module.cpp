@@ -170,7 +170,8 @@ void validate(const nmesh::Parameters& params) {
 py::tuple reconstruct(const py::array& points, std::uint32_t target_vertices, double alpha_w, double alpha_n,
                       double alpha, std::uint32_t cvs, std::uint32_t cec, bool edge_swap, bool finish,
                       std::uint64_t seed, double settle, std::uint32_t finish_rounds, std::uint32_t fit_rounds,
-                      std::uint32_t surface_fit_rounds, std::uint32_t index_points_per_vertex,
+                      std::uint32_t surface_fit_rounds, std::uint32_t exchange_passes,
+                      std::uint32_t index_points_per_vertex,
                       const std::string& topology, bool fold_guard, bool solid_start, double min_hole,
                       double stray_ratio, double adaptivity, std::uint32_t threads, const py::object& progress, bool metrics) {
     const nmesh::PointSpan cloud = point_view(points, "points");  // `points` is kept alive by the caller's frame
@@ -188,6 +189,7 @@ py::tuple reconstruct(const py::array& points, std::uint32_t target_vertices, do
     params.finish_rounds = finish_rounds;
     params.fit_rounds = fit_rounds;
     params.surface_fit_rounds = surface_fit_rounds;
+    params.exchange_passes = exchange_passes;
     params.index_points_per_vertex = index_points_per_vertex;
     params.topology = nmesh::parse_topology(topology.c_str());  // ParameterError: ValueError
     params.fold_guard = fold_guard;
@@ -307,7 +309,8 @@ PYBIND11_MODULE(_nmesh, m) {
     using py::arg;
     m.def("reconstruct", &reconstruct, arg("points"), arg("target_vertices"), arg("alpha_w"), arg("alpha_n"),
           arg("alpha"), arg("cvs"), arg("cec"), arg("edge_swap"), arg("finish"), arg("seed"), arg("settle"),
-          arg("finish_rounds"), arg("fit_rounds"), arg("surface_fit_rounds"), arg("index_points_per_vertex"),
+          arg("finish_rounds"), arg("fit_rounds"), arg("surface_fit_rounds"), arg("exchange_passes"),
+          arg("index_points_per_vertex"),
           arg("topology"), arg("fold_guard"), arg("solid_start"), arg("min_hole"), arg("stray_ratio"), arg("adaptivity"), arg("threads"),
           arg("progress").none(true), arg("metrics"),
           "Learns a mesh from a float32 (N, 3) C-contiguous array, read in place; returns "

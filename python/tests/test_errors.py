@@ -24,6 +24,7 @@ import nmesh
         ({"finish_rounds": 1001}, "finish_rounds"),
         ({"fit_rounds": 1, "finish": False}, "fit_rounds"),
         ({"surface_fit_rounds": 101}, "surface_fit_rounds"),
+        ({"exchange_passes": 101}, "exchange_passes"),
         ({"seed": -1}, "seed"),
         ({"seed": 2**64}, "seed"),
         ({"topology": "plane"}, "topology"),

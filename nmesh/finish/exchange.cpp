@@ -1,0 +1,198 @@
+// The vertex exchange of the finishing stage (nmesh/finish/exchange.h).
+#include "nmesh/finish/exchange.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "nmesh/finish/mesh_queries.h"
+#include "nmesh/finish/regularise.h"
+#include "nmesh/finish/repair.h"
+#include "nmesh/spatial/point_grid.h"
+#include "nmesh/util/math_constants.h"
+
+namespace nmesh {
+
+using namespace finish_detail;
+
+namespace {
+
+struct Candidate {
+    float value = 0.0f;
+    Halfedge h;
+};
+
+bool touches_boundary(const Mesh& mesh, Halfedge h) {
+    return mesh.is_boundary(mesh.from(h)) || mesh.is_boundary(mesh.to(h));
+}
+
+// The quadric cost of collapsing h = (a -> b), b staying where it is: over a's triangles, area
+// times the squared distance of b to the triangle's plane. Infinite when the collapse would turn
+// one of a's triangles by more than the limit (or flatten it).
+float collapse_cost(const Mesh& mesh, Halfedge h, float cos_turn) {
+    const Vertex a = mesh.from(h), b = mesh.to(h);
+    const Vec3 pa = mesh.position(a), pb = mesh.position(b);
+    float cost = 0.0f;
+    bool ok = true;
+    mesh.for_each_corner(a, [&](Halfedge c) {
+        const Vertex q1 = mesh.to(c), q2 = mesh.to(mesh.next(c));
+        if (q1 == b || q2 == b) return;  // goes with the edge
+        const Vec3 x1 = mesh.position(q1), x2 = mesh.position(q2);
+        const Vec3 before = cross(x1 - pa, x2 - pa);
+        const Vec3 after = cross(x1 - pb, x2 - pb);
+        const float lb = norm(before), la = norm(after);
+        if (!(lb > 0.0f) || !(la > 0.0f) || dot(before, after) < cos_turn * lb * la) {
+            ok = false;
+            return;
+        }
+        const float d = dot(pb - pa, before) / lb;
+        cost += 0.5f * lb * d * d;
+    });
+    return ok ? cost : std::numeric_limits<float>::infinity();
+}
+
+}  // namespace
+
+ExchangeResult exchange_vertices(Mesh& mesh, const CloudSurface& cloud, int passes, float flip_max_dihedral_deg) {
+    ExchangeResult result;
+    const float cos_turn = std::cos(kExchangeTurnDeg * kPi / 180.0f);
+    std::vector<Candidate> collapses, splits;
+    std::vector<Vec3> split_at(mesh.edge_capacity());
+    std::vector<std::uint8_t> locked;
+    std::vector<Vertex> set;
+    for (int pass = 0; pass < passes; ++pass) {
+        collapses.clear();
+        splits.clear();
+        split_at.resize(mesh.edge_capacity());
+        for (std::uint32_t e = 0; e < mesh.edge_capacity(); ++e) {
+            if (mesh.is_removed(Edge(e))) continue;
+            const Halfedge h = Mesh::halfedge(Edge(e), 0);
+            if (mesh.is_boundary(Edge(e)) || touches_boundary(mesh, h)) continue;
+            // The collapse, the cheaper direction.
+            const float c0 = collapse_cost(mesh, h, cos_turn), c1 = collapse_cost(mesh, Mesh::twin(h), cos_turn);
+            if (std::isfinite(std::min(c0, c1))) collapses.push_back({std::min(c0, c1), c0 <= c1 ? h : Mesh::twin(h)});
+        }
+        // The splits: each face's bias, the mean signed distance of the points nearest its centroid
+        // from its plane (noise averages out; a chord under a bend does not).
+        const std::vector<Face> faces = alive_faces(mesh);
+        std::vector<Vec3> centroids(faces.size());
+        for (std::size_t i = 0; i < faces.size(); ++i) centroids[i] = mesh.face_centroid(faces[i]);
+        const PointGrid face_index(centroids);
+        std::vector<double> bias_sum(mesh.face_capacity(), 0.0);
+        std::vector<double> square_sum(mesh.face_capacity(), 0.0);
+        std::vector<std::uint32_t> bias_count(mesh.face_capacity(), 0);
+        const float mean_edge = mean_edge_length(mesh);
+        const auto& points = cloud.points();
+        const std::size_t stride = std::max<std::size_t>(1, points.size() / (16 * std::size_t(mesh.n_vertices()) + 1));
+        for (std::size_t i = 0; i < points.size(); i += stride) {
+            const NearestPoint near = face_index.find_nearest(points[i]);
+            if (near.squared_distance > mean_edge * mean_edge) continue;
+            const Face f = faces[near.index];
+            const Vec3 n = normalized(area_vector(mesh, f));
+            if (dot(cloud.normal(std::uint32_t(i)), n) <= 0.0f) continue;  // the other side of a thin part
+            const double d = dot(points[i] - centroids[near.index], n);
+            bias_sum[f.idx] += d;
+            square_sum[f.idx] += d * d;
+            ++bias_count[f.idx];
+        }
+        // The scan's noise across a face, pooled over the faces with two points or more: the part
+        // of a face's squared bias that a mean over its few points has from the noise alone.
+        double scatter = 0.0, dof = 0.0;
+        for (const Face f : faces) {
+            const std::uint32_t c = bias_count[f.idx];
+            if (c < 2) continue;
+            scatter += square_sum[f.idx] - bias_sum[f.idx] * bias_sum[f.idx] / c;
+            dof += c - 1;
+        }
+        const double noise = dof > 0.0 ? scatter / dof : 0.0;
+        for (std::uint32_t e = 0; e < mesh.edge_capacity(); ++e) {
+            if (mesh.is_removed(Edge(e))) continue;
+            const Halfedge h = Mesh::halfedge(Edge(e), 0);
+            if (mesh.is_boundary(Edge(e)) || touches_boundary(mesh, h)) continue;
+            const float len = length(mesh, h);
+            float gain = 0.0f, sag = 0.0f, wsum = 0.0f;
+            Vec3 n;
+            for (const Halfedge k : {h, Mesh::twin(h)}) {
+                const Face f = mesh.face(k);
+                const Vec3 av = area_vector(mesh, f);
+                n += av;
+                if (bias_count[f.idx] == 0) continue;
+                const float longest = std::max({len, length(mesh, mesh.next(k)), length(mesh, mesh.next(mesh.next(k)))});
+                const float b = float(bias_sum[f.idx] / bias_count[f.idx]);
+                const float share = (len / longest) * (len / longest);
+                const float excess = float(std::max(0.0, double(b) * b - noise / bias_count[f.idx]));
+                gain += 0.5f * norm(av) * excess * share;
+                sag += b * share;
+                wsum += share;
+            }
+            if (!(gain > 0.0f)) continue;
+            const Vec3 mid = (mesh.position(mesh.from(h)) + mesh.position(mesh.to(h))) * 0.5f;
+            // The new vertex goes as far as the faces' bias, within a quarter of the edge.
+            split_at[e] = mid + normalized(n) * std::clamp(sag / wsum, -0.25f * len, 0.25f * len);
+            splits.push_back({gain, h});
+        }
+        std::sort(collapses.begin(), collapses.end(), [](const Candidate& x, const Candidate& y) {
+            return x.value < y.value || (x.value == y.value && x.h < y.h);
+        });
+        std::sort(splits.begin(), splits.end(), [](const Candidate& x, const Candidate& y) {
+            return x.value > y.value || (x.value == y.value && x.h < y.h);
+        });
+        locked.assign(mesh.vertex_capacity() + 2 * std::size_t(kExchangeShare * float(mesh.n_vertices()) + 2), 0);
+        const std::uint64_t max_pairs = std::uint64_t(kExchangeShare * float(mesh.n_vertices())) + 1;
+        std::uint64_t pairs = 0;
+        std::size_t si = 0;
+        const auto is_locked = [&](Vertex v) { return v.idx < locked.size() && locked[v.idx]; };
+        const auto split_vertices = [&](Halfedge h) {
+            return std::array<Vertex, 4>{mesh.from(h), mesh.to(h), mesh.to(mesh.next(h)),
+                                         mesh.to(mesh.next(Mesh::twin(h)))};
+        };
+        for (std::size_t ci = 0; ci < collapses.size() && pairs < max_pairs; ++ci) {
+            const Candidate& c = collapses[ci];
+            while (si < splits.size()) {
+                const auto q = split_vertices(splits[si].h);
+                if (std::none_of(q.begin(), q.end(), is_locked)) break;
+                ++si;
+            }
+            if (si == splits.size() || splits[si].value <= kExchangeMargin * c.value) break;
+            // The collapse's reach: both rings.
+            const Vertex a = mesh.from(c.h), b = mesh.to(c.h);
+            set.clear();
+            set.push_back(a);
+            set.push_back(b);
+            mesh.for_each_neighbor(a, [&](Vertex v) { set.push_back(v); });
+            mesh.for_each_neighbor(b, [&](Vertex v) { set.push_back(v); });
+            if (std::any_of(set.begin(), set.end(), is_locked)) continue;
+            if (mesh.valence(a) + mesh.valence(b) - 4 > kExchangeMaxValence || !mesh.can_collapse(c.h)) continue;
+            // The first split clear of the collapse's reach and worth it.
+            std::size_t sj = si;
+            for (; sj < splits.size() && splits[sj].value > kExchangeMargin * c.value; ++sj) {
+                const auto q = split_vertices(splits[sj].h);
+                const bool clear = std::none_of(q.begin(), q.end(), [&](Vertex v) {
+                    return is_locked(v) || std::find(set.begin(), set.end(), v) != set.end();
+                });
+                if (clear) break;
+            }
+            if (sj == splits.size() || !(splits[sj].value > kExchangeMargin * c.value)) continue;
+            const Halfedge sh = splits[sj].h;
+            const auto q = split_vertices(sh);
+            const Vec3 to = split_at[Mesh::edge(sh).idx];
+            mesh.collapse(c.h);
+            const Vertex added = split_edge(mesh, sh);  // valid: no end of sh is on a boundary
+            mesh.set_position(added, to);
+            for (const Vertex v : set) locked[v.idx] = 1;
+            for (const Vertex v : q) locked[v.idx] = 1;
+            if (added.idx >= locked.size()) locked.resize(added.idx + 1, 0);
+            locked[added.idx] = 1;
+            ++pairs;
+        }
+        ++result.passes;
+        result.exchanged += pairs;
+        flip_to_delaunay(mesh, flip_max_dihedral_deg);
+        if (pairs == 0) break;
+    }
+    return result;
+}
+
+}  // namespace nmesh
