@@ -103,6 +103,7 @@ int main(int argc, char** argv) {
                     p.target_vertices = n;
                     p.seed = seed;
                     p.surface_fit_rounds = 0;
+                    p.exchange_passes = 0;  // the mesh the fit's settings were chosen on
                     const nmesh::Result res = nmesh::reconstruct(cloud, p);
                     const auto measure = [&](const nmesh::IndexedMesh& m, double x, double r, double st, int round,
                                              double seconds, const nmesh::SurfaceFitResult& fit) {

@@ -28,29 +28,50 @@ bool touches_boundary(const Mesh& mesh, Halfedge h) {
     return mesh.is_boundary(mesh.from(h)) || mesh.is_boundary(mesh.to(h));
 }
 
-// The quadric cost of collapsing h = (a -> b), b staying where it is: over a's triangles, area
-// times the squared distance of b to the triangle's plane. Infinite when the collapse would turn
-// one of a's triangles by more than the limit (or flatten it).
-float collapse_cost(const Mesh& mesh, Halfedge h, float cos_turn) {
+// A vertex's quadric about itself, sum over its triangles of area x n n^T (n the unit normal): the
+// cost of moving it by d onto a neighbour is d^T Q d, the area times the squared distance of the
+// neighbour to each of its triangles' planes (zero for the triangles the neighbour is in).
+struct Quadric {
+    float xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
+    float of(const Vec3& d) const {
+        return xx * d.x * d.x + yy * d.y * d.y + zz * d.z * d.z + 2.0f * (xy * d.x * d.y + xz * d.x * d.z + yz * d.y * d.z);
+    }
+};
+
+Quadric vertex_quadric(const Mesh& mesh, Vertex a) {
+    Quadric q;
+    const Vec3 pa = mesh.position(a);
+    mesh.for_each_corner(a, [&](Halfedge c) {
+        const Vec3 x = cross(mesh.position(mesh.to(c)) - pa, mesh.position(mesh.to(mesh.next(c))) - pa);
+        const float twice_area = norm(x);
+        if (!(twice_area > 0.0f)) return;
+        const Vec3 n = x * (1.0f / twice_area);
+        const float w = 0.5f * twice_area;
+        q.xx += w * n.x * n.x;
+        q.xy += w * n.x * n.y;
+        q.xz += w * n.x * n.z;
+        q.yy += w * n.y * n.y;
+        q.yz += w * n.y * n.z;
+        q.zz += w * n.z * n.z;
+    });
+    return q;
+}
+
+// Whether collapsing h = (a -> b), b staying, turns none of a's triangles by more than the limit
+// (nor flattens one).
+bool collapse_keeps_turns(const Mesh& mesh, Halfedge h, float cos_turn) {
     const Vertex a = mesh.from(h), b = mesh.to(h);
     const Vec3 pa = mesh.position(a), pb = mesh.position(b);
-    float cost = 0.0f;
     bool ok = true;
     mesh.for_each_corner(a, [&](Halfedge c) {
         const Vertex q1 = mesh.to(c), q2 = mesh.to(mesh.next(c));
-        if (q1 == b || q2 == b) return;  // goes with the edge
+        if (!ok || q1 == b || q2 == b) return;  // goes with the edge
         const Vec3 x1 = mesh.position(q1), x2 = mesh.position(q2);
-        const Vec3 before = cross(x1 - pa, x2 - pa);
-        const Vec3 after = cross(x1 - pb, x2 - pb);
+        const Vec3 before = cross(x1 - pa, x2 - pa), after = cross(x1 - pb, x2 - pb);
         const float lb = norm(before), la = norm(after);
-        if (!(lb > 0.0f) || !(la > 0.0f) || dot(before, after) < cos_turn * lb * la) {
-            ok = false;
-            return;
-        }
-        const float d = dot(pb - pa, before) / lb;
-        cost += 0.5f * lb * d * d;
+        ok = lb > 0.0f && la > 0.0f && dot(before, after) >= cos_turn * lb * la;
     });
-    return ok ? cost : std::numeric_limits<float>::infinity();
+    return ok;
 }
 
 }  // namespace
@@ -62,17 +83,22 @@ ExchangeResult exchange_vertices(Mesh& mesh, const CloudSurface& cloud, int pass
     std::vector<Vec3> split_at(mesh.edge_capacity());
     std::vector<std::uint8_t> locked;
     std::vector<Vertex> set;
+    std::vector<Quadric> quadrics;
     for (int pass = 0; pass < passes; ++pass) {
         collapses.clear();
         splits.clear();
         split_at.resize(mesh.edge_capacity());
+        quadrics.assign(mesh.vertex_capacity(), Quadric());
+        for (std::uint32_t v = 0; v < mesh.vertex_capacity(); ++v)
+            if (!mesh.is_removed(Vertex(v))) quadrics[v] = vertex_quadric(mesh, Vertex(v));
         for (std::uint32_t e = 0; e < mesh.edge_capacity(); ++e) {
             if (mesh.is_removed(Edge(e))) continue;
             const Halfedge h = Mesh::halfedge(Edge(e), 0);
             if (mesh.is_boundary(Edge(e)) || touches_boundary(mesh, h)) continue;
-            // The collapse, the cheaper direction.
-            const float c0 = collapse_cost(mesh, h, cos_turn), c1 = collapse_cost(mesh, Mesh::twin(h), cos_turn);
-            if (std::isfinite(std::min(c0, c1))) collapses.push_back({std::min(c0, c1), c0 <= c1 ? h : Mesh::twin(h)});
+            // The collapse, the cheaper direction (h takes from(h) onto to(h)).
+            const Vec3 d = mesh.position(mesh.to(h)) - mesh.position(mesh.from(h));
+            const float c0 = quadrics[mesh.from(h).idx].of(d), c1 = quadrics[mesh.to(h).idx].of(d);
+            collapses.push_back({std::min(c0, c1), c0 <= c1 ? h : Mesh::twin(h)});
         }
         // The splits: each face's bias, the mean signed distance of the points nearest its centroid
         // from its plane (noise averages out; a chord under a bend does not).
@@ -164,7 +190,9 @@ ExchangeResult exchange_vertices(Mesh& mesh, const CloudSurface& cloud, int pass
             mesh.for_each_neighbor(a, [&](Vertex v) { set.push_back(v); });
             mesh.for_each_neighbor(b, [&](Vertex v) { set.push_back(v); });
             if (std::any_of(set.begin(), set.end(), is_locked)) continue;
-            if (mesh.valence(a) + mesh.valence(b) - 4 > kExchangeMaxValence || !mesh.can_collapse(c.h)) continue;
+            if (mesh.valence(a) + mesh.valence(b) - 4 > kExchangeMaxValence || !mesh.can_collapse(c.h) ||
+                !collapse_keeps_turns(mesh, c.h, cos_turn))
+                continue;
             // The first split clear of the collapse's reach and worth it.
             std::size_t sj = si;
             for (; sj < splits.size() && splits[sj].value > kExchangeMargin * c.value; ++sj) {
