@@ -19,6 +19,9 @@ using namespace finish_detail;
 
 namespace {
 
+// A collapse looks this far down the list of splits for one clear of its reach.
+constexpr std::size_t kSplitsLooked = 64;
+
 struct Candidate {
     float value = 0.0f;
     Halfedge h;
@@ -112,7 +115,18 @@ ExchangeResult exchange_vertices(Mesh& mesh, const CloudSurface& cloud, int pass
         const float mean_edge = mean_edge_length(mesh);
         const auto& points = cloud.points();
         const std::size_t stride = std::max<std::size_t>(1, points.size() / (16 * std::size_t(mesh.n_vertices()) + 1));
+        // Only the points near the mesh's box are looked up (the mesh may be one piece of a cloud
+        // in several: a query far from the centroids costs a search through empty cells).
+        Vec3 low = centroids.empty() ? Vec3() : centroids[0], high = low;
+        for (const Vec3& c : centroids) {
+            low = Vec3(std::min(low.x, c.x), std::min(low.y, c.y), std::min(low.z, c.z));
+            high = Vec3(std::max(high.x, c.x), std::max(high.y, c.y), std::max(high.z, c.z));
+        }
         for (std::size_t i = 0; i < points.size(); i += stride) {
+            const Vec3& x = points[i];
+            if (x.x < low.x - mean_edge || x.y < low.y - mean_edge || x.z < low.z - mean_edge ||
+                x.x > high.x + mean_edge || x.y > high.y + mean_edge || x.z > high.z + mean_edge)
+                continue;
             const NearestPoint near = face_index.find_nearest(points[i]);
             if (near.squared_distance > mean_edge * mean_edge) continue;
             const Face f = faces[near.index];
@@ -193,16 +207,21 @@ ExchangeResult exchange_vertices(Mesh& mesh, const CloudSurface& cloud, int pass
             if (mesh.valence(a) + mesh.valence(b) - 4 > kExchangeMaxValence || !mesh.can_collapse(c.h) ||
                 !collapse_keeps_turns(mesh, c.h, cos_turn))
                 continue;
-            // The first split clear of the collapse's reach and worth it.
+            // The first split clear of the collapse's reach and worth it, among the next
+            // kSplitsLooked: the splits taken by the pass leave locked ones in the list, and a
+            // search through all of them for every collapse would cost collapses x splits.
             std::size_t sj = si;
-            for (; sj < splits.size() && splits[sj].value > kExchangeMargin * c.value; ++sj) {
+            bool found = false;
+            for (std::size_t looked = 0; sj < splits.size() && looked < kSplitsLooked &&
+                                         splits[sj].value > kExchangeMargin * c.value;
+                 ++sj, ++looked) {
                 const auto q = split_vertices(splits[sj].h);
-                const bool clear = std::none_of(q.begin(), q.end(), [&](Vertex v) {
+                found = std::none_of(q.begin(), q.end(), [&](Vertex v) {
                     return is_locked(v) || std::find(set.begin(), set.end(), v) != set.end();
                 });
-                if (clear) break;
+                if (found) break;
             }
-            if (sj == splits.size() || !(splits[sj].value > kExchangeMargin * c.value)) continue;
+            if (!found) continue;
             const Halfedge sh = splits[sj].h;
             const auto q = split_vertices(sh);
             const Vec3 to = split_at[Mesh::edge(sh).idx];

@@ -93,6 +93,7 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
     // Step 2, the vertices exchanged towards where the shape bends (exchange.h), measured on the
     // mesh fitted to the points (the learnt vertices sit inside a bend; fitted, what is left of a
     // face's offset from its points is its chord).
+    std::optional<Mesh> unexchanged;  // the mesh before the exchange, for the repair's fallback
     if (pull && options.exchange_passes > 0 && !regularisation_over()) {
         if (options.surface_fit_rounds > 0) {
             SurfaceFitOptions fit;
@@ -101,6 +102,7 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
             fit.threads = options.threads;
             fit_surface(mesh, *pull, fit);
         }
+        unexchanged = mesh;
         report.exchanged =
             exchange_vertices(mesh, *pull, options.exchange_passes, options.flip_max_dihedral_deg).exchanged;
     }
@@ -133,6 +135,26 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
         // as long, docs/performance.md).
         std::optional<Mesh> off_cloud = std::move(r.off_cloud);
         float off_cloud_rise = r.off_cloud_rise;
+        // A repair that fails after the exchange is tried on the mesh before it (a collapse can bring
+        // a triangle through a nearby sheet, which the repair is not always able to take out): the
+        // mesh with fewer crossing pairs goes on (the exchanged one on a tie).
+        if (r.intersecting_pairs > 0 && !r.declined && unexchanged) {
+            Mesh alternative = std::move(*unexchanged);
+            last_rounds = 0;
+            RepairResult ru = repair_folds_and_intersections(alternative, options.repair_max_rounds,
+                                                             options.fold_dihedral_deg, pull, 0.5 * seconds_left(),
+                                                             on_round, options.repair_max_defect_share, options.threads);
+            report.repair_rounds += ru.rounds;
+            if (ru.off_cloud && (!off_cloud || ru.off_cloud_rise < off_cloud_rise)) {
+                off_cloud = std::move(ru.off_cloud);
+                off_cloud_rise = ru.off_cloud_rise;
+            }
+            if (ru.intersecting_pairs < r.intersecting_pairs) {
+                mesh = std::move(alternative);
+                r = std::move(ru);
+                report.exchange_undone = true;
+            }
+        }
         // A mesh too defective to repair (kRepairMaxDefectShare) is not tried again as learnt: on
         // the single view the learnt mesh has more defects than the regularised one, not fewer.
         if (r.intersecting_pairs > 0 && !r.declined && (options.rounds > 0 || options.fit_rounds > 0)) {

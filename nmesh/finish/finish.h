@@ -131,6 +131,7 @@ struct FinishReport {
     bool repair_declined = false;  // not tried: too many defects for a repair (kRepairMaxDefectShare)
     std::uint32_t cover_moves = 0;  // vertex moves of step 3 kept
     std::uint64_t exchanged = 0;    // collapse-split pairs of the vertex exchange
+    bool exchange_undone = false;   // its repair failed, and the mesh before it was repaired instead
     SurfaceFitResult surface_fit;   // the last step
     // When the repair of the regularised mesh fails and that mesh has more intersecting pairs than
     // the learnt one, the stage falls back on the learnt mesh, repaired if possible.
