@@ -184,18 +184,22 @@ ExchangeResult exchange_vertices(Mesh& mesh, const CloudSurface& cloud, int pass
         std::uint64_t pairs = 0;
         std::size_t si = 0;
         const auto is_locked = [&](Vertex v) { return v.idx < locked.size() && locked[v.idx]; };
+        // A candidate's edge is gone when an operation of the pass took it (its slot free, or
+        // reused by a new edge at a locked vertex): it is read only when it is live.
         const auto split_vertices = [&](Halfedge h) {
             return std::array<Vertex, 4>{mesh.from(h), mesh.to(h), mesh.to(mesh.next(h)),
                                          mesh.to(mesh.next(Mesh::twin(h)))};
         };
+        const auto split_blocked = [&](Halfedge h) {
+            if (mesh.is_removed(Mesh::edge(h))) return true;
+            const auto q = split_vertices(h);
+            return std::any_of(q.begin(), q.end(), is_locked);
+        };
         for (std::size_t ci = 0; ci < collapses.size() && pairs < max_pairs; ++ci) {
             const Candidate& c = collapses[ci];
-            while (si < splits.size()) {
-                const auto q = split_vertices(splits[si].h);
-                if (std::none_of(q.begin(), q.end(), is_locked)) break;
-                ++si;
-            }
+            while (si < splits.size() && split_blocked(splits[si].h)) ++si;
             if (si == splits.size() || splits[si].value <= kExchangeMargin * c.value) break;
+            if (mesh.is_removed(Mesh::edge(c.h))) continue;
             // The collapse's reach: both rings.
             const Vertex a = mesh.from(c.h), b = mesh.to(c.h);
             set.clear();
@@ -215,10 +219,10 @@ ExchangeResult exchange_vertices(Mesh& mesh, const CloudSurface& cloud, int pass
             for (std::size_t looked = 0; sj < splits.size() && looked < kSplitsLooked &&
                                          splits[sj].value > kExchangeMargin * c.value;
                  ++sj, ++looked) {
+                if (split_blocked(splits[sj].h)) continue;
                 const auto q = split_vertices(splits[sj].h);
-                found = std::none_of(q.begin(), q.end(), [&](Vertex v) {
-                    return is_locked(v) || std::find(set.begin(), set.end(), v) != set.end();
-                });
+                found = std::none_of(q.begin(), q.end(),
+                                     [&](Vertex v) { return std::find(set.begin(), set.end(), v) != set.end(); });
                 if (found) break;
             }
             if (!found) continue;
