@@ -86,8 +86,8 @@ def test_float32_points_are_not_copied(bunny: np.ndarray) -> None:
     assert nmesh._as_points(bunny) is bunny
     assert nmesh._as_points(bunny.astype(np.float64)) is not bunny
     # ...and the extension reads only such arrays, in place: it never converts one itself.
-    args = (400, 0.08, 0.01, 0.95, 100, 20, True, True, 1, 0.0, 10, 0, 4, 64, "closed", True, True, 0.0, 6.0, 0.0, 1,
-            None, False)
+    args = (400, 0.08, 0.01, 0.95, 100, 20, True, True, 1, 0.0, 10, 0, 4, 10, 64, "closed", True, True, 0.0, 6.0, 0.0,
+            1, None, False)
     for other in (bunny.astype(np.float64), np.asfortranarray(bunny), bunny[::2], bunny[:, :2]):
         with pytest.raises(TypeError, match="float32 array of shape"):
             _nmesh.reconstruct(other, *args)
@@ -145,7 +145,7 @@ def test_every_parameter_is_a_keyword() -> None:
     header = (Path(__file__).resolve().parents[2] / "nmesh" / "parameters.h").read_text()
     body = header[header.index("struct Parameters {"):header.index("void validate() const;")]
     fields = set(re.findall(r"^\s+[\w:]+ (\w+) = ", body, re.M))
-    assert "fold_guard" in fields and "threads" in fields and len(fields) == 21
+    assert "fold_guard" in fields and "threads" in fields and len(fields) == 22
     keywords = set(inspect.signature(nmesh.reconstruct).parameters) - {"points", "progress", "metrics"}
     assert {"vertices" if f == "target_vertices" else f for f in fields} == keywords
 
