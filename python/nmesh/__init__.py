@@ -197,7 +197,7 @@ def reconstruct(
     finish_rounds: int = 10,
     fit_rounds: int = 0,
     surface_fit_rounds: int = 4,
-    exchange_passes: int = 10,
+    exchange_passes: int = 0,
     settle: float = 0.0,
     index_points_per_vertex: int = 64,
     threads: int = 0,
