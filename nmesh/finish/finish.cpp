@@ -135,46 +135,34 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
         // as long, docs/performance.md).
         std::optional<Mesh> off_cloud = std::move(r.off_cloud);
         float off_cloud_rise = r.off_cloud_rise;
-        // A repair that fails after the exchange is tried on the mesh before it (a collapse can bring
-        // a triangle through a nearby sheet, which the repair is not always able to take out): the
-        // mesh with fewer crossing pairs goes on (the exchanged one on a tie).
-        if (r.intersecting_pairs > 0 && !r.declined && unexchanged) {
-            Mesh alternative = std::move(*unexchanged);
-            last_rounds = 0;
-            RepairResult ru = repair_folds_and_intersections(alternative, options.repair_max_rounds,
-                                                             options.fold_dihedral_deg, pull, 0.5 * seconds_left(),
-                                                             on_round, options.repair_max_defect_share, options.threads);
-            report.repair_rounds += ru.rounds;
-            if (ru.off_cloud && (!off_cloud || ru.off_cloud_rise < off_cloud_rise)) {
-                off_cloud = std::move(ru.off_cloud);
-                off_cloud_rise = ru.off_cloud_rise;
-            }
-            if (ru.intersecting_pairs < r.intersecting_pairs) {
-                mesh = std::move(alternative);
-                r = std::move(ru);
-                report.exchange_undone = true;
-            }
-        }
-        // A mesh too defective to repair (kRepairMaxDefectShare) is not tried again as learnt: on
-        // the single view the learnt mesh has more defects than the regularised one, not fewer.
-        if (r.intersecting_pairs > 0 && !r.declined && (options.rounds > 0 || options.fit_rounds > 0)) {
-            Mesh alternative = learnt;
+        // Another mesh repaired in place of this one: its off-cloud repair kept if it rose less, and
+        // the mesh itself taken when it is left with fewer crossing pairs (this one on a tie).
+        const auto repair_instead = [&](Mesh alternative, double seconds) {
             last_rounds = 0;
             RepairResult ra = repair_folds_and_intersections(alternative, options.repair_max_rounds,
-                                                             options.fold_dihedral_deg, pull, seconds_left(), on_round,
+                                                             options.fold_dihedral_deg, pull, seconds, on_round,
                                                              options.repair_max_defect_share, options.threads);
             report.repair_rounds += ra.rounds;
             if (ra.off_cloud && (!off_cloud || ra.off_cloud_rise < off_cloud_rise)) {
                 off_cloud = std::move(ra.off_cloud);
                 off_cloud_rise = ra.off_cloud_rise;
             }
-            if (ra.intersecting_pairs < r.intersecting_pairs) {
-                mesh = std::move(alternative);
-                r = std::move(ra);
-                report.fallback =
-                    r.reverted ? FinishReport::Fallback::learnt_mesh : FinishReport::Fallback::repaired_learnt_mesh;
-            }
-        }
+            if (!(ra.intersecting_pairs < r.intersecting_pairs)) return false;
+            mesh = std::move(alternative);
+            r = std::move(ra);
+            return true;
+        };
+        // A repair that fails after the exchange is tried on the mesh before it (a collapse can bring
+        // a triangle through a nearby sheet, which the repair is not always able to take out).
+        if (r.intersecting_pairs > 0 && !r.declined && unexchanged &&
+            repair_instead(std::move(*unexchanged), 0.5 * seconds_left()))
+            report.exchange_undone = true;
+        // A mesh too defective to repair (kRepairMaxDefectShare) is not tried again as learnt: on
+        // the single view the learnt mesh has more defects than the regularised one, not fewer.
+        if (r.intersecting_pairs > 0 && !r.declined && (options.rounds > 0 || options.fit_rounds > 0) &&
+            repair_instead(learnt, seconds_left()))
+            report.fallback =
+                r.reverted ? FinishReport::Fallback::learnt_mesh : FinishReport::Fallback::repaired_learnt_mesh;
         // The last resort, when neither mesh came out without crossing pairs: a repair that
         // removed every defect but moved the surface off the cloud (by less than the two mean
         // edges at which a repair is abandoned), the one that moved it least. A valid surface
