@@ -78,7 +78,7 @@ constexpr const char* kReconstructUsage =
     "  --surface-fit-rounds N fit the vertices to the cloud's points by least squares, N rounds\n"
     "                         (default 4; 0: off)\n"
     "  --exchange-passes N    move vertices from flat parts to where the surface bends, N passes\n"
-    "                         of at most 2% of them each (default 0: where the learning put them; 10 measured best)\n"
+    "                         of at most 2% of them each (default 10; 0: where the learning put them)\n"
     "  --index-points K       index at most K cloud points per vertex for the edge swap and the\n"
     "                         finishing stage (default 64; 0: every point)\n"
     "  --settle X             X * n iterations without topology changes at the end (default 0)\n"

@@ -107,7 +107,7 @@ struct FinishOptions {
     // Vertex exchange (after the regularisation, only with `project`): passes of exchange_vertices
     // (nmesh/finish/exchange.h) on the mesh first fitted to the points (surface_fit_rounds rounds of
     // the fit). 0 skips it.
-    int exchange_passes = 0;
+    int exchange_passes = 10;
     // Threads (0: the machine's cores) for the work that is independent vertex by vertex or point
     // by point: the relaxation's new positions and the surface fit's nearest triangles. The
     // results are combined in the same order for any count: the same mesh, bit for bit.

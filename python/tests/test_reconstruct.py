@@ -109,7 +109,7 @@ def test_seed_and_parameters_reach_the_library(bunny: np.ndarray, bunny_mesh: nm
                                     "topology": "closed",
                                     "settle": 0, "finish": False,
                                     "finish_rounds": 10, "fit_rounds": 0, "surface_fit_rounds": 4,
-                                    "exchange_passes": 0, "min_hole": 0,
+                                    "exchange_passes": 10, "min_hole": 0,
                                     "stray_ratio": 3.5, "adaptivity": 0, "index_points_per_vertex": 0, "threads": 2}
     assert params["seconds_finish"] == 0
 
