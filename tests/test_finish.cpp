@@ -800,7 +800,7 @@ TEST_CASE("a repair that moves the surface off the cloud is given up after its f
     p.finish = false;
     Mesh m = Mesh::from_indexed(reconstruct(cap, p).mesh);
     const IndexedMesh before = m.to_indexed();
-    Mesh declined = m;
+    Mesh declined = m, exchanged = m;
     FinishOptions options;
     options.repair_max_defect_share = 1.0f;  // the repair tried, however defective the mesh
     options.exchange_passes = 0;  // one repair (with the exchange, its failure is tried again before it)
@@ -821,6 +821,15 @@ TEST_CASE("a repair that moves the surface off the cloud is given up after its f
     CHECK(d.intersecting_pairs_before == r.intersecting_pairs_before);
     CHECK(d.intersecting_pairs_after == d.intersecting_pairs_before);
     CHECK(declined.same_arrays(m));
+    // With the vertex exchange (the default), the exchanged mesh is as defective and its repair
+    // declined too: the mesh from before the exchange and its fit goes on instead, and the stage
+    // ends with the mesh it gives without the exchange, bit for bit.
+    const FinishReport e = finish_mesh(exchanged, cap, FinishOptions{});
+    CHECK(e.exchanged > 0);
+    CHECK(e.exchange_undone);
+    CHECK(e.repair_declined);
+    CHECK(e.intersecting_pairs_after == d.intersecting_pairs_after);
+    CHECK(exchanged.same_arrays(declined));
     // reconstruct() says so (the CLI's warning and --stats read it).
     Parameters q = p;
     q.finish = true;
