@@ -126,11 +126,7 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
         RepairResult r = repair_folds_and_intersections(mesh, options.repair_max_rounds, options.fold_dihedral_deg,
                                                         pull, 0.5 * seconds_left(), on_round,
                                                         options.repair_max_defect_share, options.threads);
-        report.intersecting_pairs_before = r.intersecting_pairs_before;
-        report.folded_edges_before = r.folded_edges_before;
         report.repair_rounds = r.rounds;
-        report.repair_reverted = r.reverted;
-        report.repair_declined = r.declined;
         // When the repair leaves intersecting pairs, it is tried on the learnt mesh as well, and
         // the mesh with fewer of them is kept (the regularised one on a tie): the stage never
         // returns more of them than the learnt mesh had. Folded edges alone do not call for it:
@@ -167,8 +163,13 @@ FinishReport finish_mesh(Mesh& mesh, const std::vector<Vec3>& cloud, const Finis
             fit_centroid_rounds(*unexchanged, false);
             repair_instead(std::move(*unexchanged), 0.5 * seconds_left(), true);
             report.exchange_undone = true;
-            report.repair_declined = r.declined;
         }
+        // The repair's report is that of the regularised mesh which went on (after an undone
+        // exchange, the mesh before it), whatever the learnt mesh's fallback below gives.
+        report.intersecting_pairs_before = r.intersecting_pairs_before;
+        report.folded_edges_before = r.folded_edges_before;
+        report.repair_reverted = r.reverted;
+        report.repair_declined = r.declined;
         // A mesh too defective to repair (kRepairMaxDefectShare) is not tried again as learnt: on
         // the single view the learnt mesh has more defects than the regularised one, not fewer.
         if (r.intersecting_pairs > 0 && !r.declined && (options.rounds > 0 || options.fit_rounds > 0) &&
